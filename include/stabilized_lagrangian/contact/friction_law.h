@@ -1,0 +1,51 @@
+#pragma once
+
+#include <stabilized_lagrangian/plugins.h>
+
+namespace StabilizedLagrangian
+{
+  namespace FrictionLaws
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Interface of the friction laws: the threshold s as a function of the
+     * contact pressure. With s frozen the problem is a Tresca problem (DESIGN §3).
+     */
+    class Interface
+    {
+    public:
+      virtual ~Interface() = default;
+
+      /**
+       * @brief False for a frictionless law: then there are no friction unknowns
+       * and no friction loop.
+       */
+      virtual bool
+      has_friction() const = 0;
+
+      /** @brief Friction threshold s for a contact pressure λ_n (MPa). */
+      virtual double
+      threshold(const double contact_pressure) const = 0;
+
+      /** @brief Coefficient used to scale r_t (μ for Coulomb). */
+      virtual double
+      friction_coefficient() const = 0;
+
+      /** @brief True when the threshold depends on the pressure (a friction loop is needed). */
+      virtual bool
+      threshold_depends_on_pressure() const = 0;
+    };
+
+    /** @brief The registry of friction laws. */
+    using Registry = PluginRegistry<Interface>;
+
+    /** @brief Declare the `Friction law` subsection. */
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /** @brief Build the friction law chosen in the `Friction law` subsection. */
+    std::unique_ptr<Interface>
+    create(ParameterHandler &prm);
+  } // namespace FrictionLaws
+} // namespace StabilizedLagrangian

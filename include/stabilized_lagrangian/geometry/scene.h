@@ -1,0 +1,47 @@
+#pragma once
+
+#include <deal.II/distributed/tria.h>
+
+#include <stabilized_lagrangian/plugins.h>
+
+namespace StabilizedLagrangian
+{
+  namespace Geometry
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Interface of the meshed deformable body of a scene.
+     *
+     * A geometry builds the mesh of the slave body and sets boundary ids that
+     * the `Boundary conditions` and `Contact` subsections refer to. Every
+     * built-in geometry uses the same convention where it applies:
+     * 2 = bottom (the candidate contact surface), 3 = top (loaded face),
+     * 0/1 = the faces at x min / x max, 4/5 = the faces at y min / y max (3D).
+     */
+    template <int dim>
+    class Interface
+    {
+    public:
+      virtual ~Interface() = default;
+
+      /** @brief Build the (refined) mesh and set its boundary ids. */
+      virtual void
+      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const = 0;
+    };
+
+    /** @brief The registry of geometries for dimension @p dim. */
+    template <int dim>
+    using Registry = PluginRegistry<Interface<dim>>;
+
+    /** @brief Declare the `Geometry` subsection with every registered geometry. */
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /** @brief Build the geometry chosen in the `Geometry` subsection. */
+    template <int dim>
+    std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm);
+  } // namespace Geometry
+} // namespace StabilizedLagrangian

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <stabilized_lagrangian/materials/material.h>
+
+namespace StabilizedLagrangian
+{
+  namespace Materials
+  {
+    /**
+     * @brief Isotropic linear elasticity in small strain (plane strain in 2D).
+     *
+     * σ = λ tr(ε) I + 2G ε with ε = sym(∇u).
+     */
+    template <int dim>
+    class LinearElastic : public Interface<dim>
+    {
+    public:
+      /**
+       * @param youngs_modulus E > 0 (MPa)
+       * @param poissons_ratio ν in [0, 0.5)
+       */
+      LinearElastic(const double youngs_modulus, const double poissons_ratio);
+
+      /** @brief Declare `Young's modulus` and `Poisson's ratio`. */
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      Response<dim>
+      evaluate(const Tensor<2, dim> &           grad_u,
+               const ArrayView<const double> &old_history,
+               const ArrayView<double> &      new_history) const override;
+
+      bool
+      is_finite_strain() const override
+      {
+        return false;
+      }
+
+      double
+      youngs_modulus() const override
+      {
+        return E;
+      }
+
+      double
+      poissons_ratio() const override
+      {
+        return nu;
+      }
+
+    private:
+      const double   E;
+      const double   nu;
+      Tensor<4, dim> elasticity;
+      double         lame_lambda;
+    };
+  } // namespace Materials
+} // namespace StabilizedLagrangian

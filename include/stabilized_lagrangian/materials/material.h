@@ -1,0 +1,95 @@
+#pragma once
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/tensor.h>
+
+#include <stabilized_lagrangian/plugins.h>
+
+namespace StabilizedLagrangian
+{
+  namespace Materials
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Response of a material at one quadrature point.
+     *
+     * The driver is written in the total Lagrangian form: the weak form is
+     * ∫ P : ∇δu with P the first Piola–Kirchhoff stress and the consistent
+     * tangent A = ∂P/∂F. For small-strain models P is the Cauchy stress and
+     * A the elasticity tensor, which is the same weak form.
+     */
+    template <int dim>
+    struct Response
+    {
+      /** First Piola–Kirchhoff stress (Cauchy stress in small strain). */
+      Tensor<2, dim> stress;
+      /** Consistent tangent ∂P/∂F (∂σ/∂∇u in small strain). */
+      Tensor<4, dim> tangent;
+      /** Cauchy stress in the out-of-plane direction (plane strain, dim = 2). */
+      double out_of_plane_stress = 0.;
+    };
+
+    /**
+     * @brief Interface of the constitutive models.
+     *
+     * A model maps the displacement gradient (and its history variables at
+     * the start of the load step) to stress and consistent tangent, and
+     * writes the updated history variables; the driver commits them only
+     * when a load step converges.
+     */
+    template <int dim>
+    class Interface
+    {
+    public:
+      virtual ~Interface() = default;
+
+      /**
+       * @brief Stress, tangent and updated history for a displacement gradient.
+       * @param grad_u displacement gradient ∇u (reference configuration)
+       * @param old_history history variables at the start of the load step
+       * @param new_history history variables for this state (size n_history())
+       */
+      virtual Response<dim>
+      evaluate(const Tensor<2, dim> &      grad_u,
+               const ArrayView<const double> &old_history,
+               const ArrayView<double> &      new_history) const = 0;
+
+      /** @brief Number of history variables per quadrature point (0: none). */
+      virtual unsigned int
+      n_history() const
+      {
+        return 0;
+      }
+
+      /** @brief Whether the kinematics are finite strain (geometry must be updated). */
+      virtual bool
+      is_finite_strain() const = 0;
+
+      /**
+       * @brief Young's modulus of the linearised response, used to scale the
+       * contact parameters and in the Hertz formulae.
+       */
+      virtual double
+      youngs_modulus() const = 0;
+
+      /** @brief Poisson's ratio of the linearised response. */
+      virtual double
+      poissons_ratio() const = 0;
+    };
+
+    /** @brief The registry of material models for dimension @p dim. */
+    template <int dim>
+    using Registry = PluginRegistry<Interface<dim>>;
+
+    /** @brief Declare the `Material` subsection with every registered model. */
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /** @brief Build the model chosen in the `Material` subsection. */
+    template <int dim>
+    std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm);
+  } // namespace Materials
+} // namespace StabilizedLagrangian

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <stabilized_lagrangian/plugins.h>
+
+#include <array>
+
+namespace StabilizedLagrangian
+{
+  namespace Obstacles
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Pairing of a slave point with the master surface (DESIGN §2).
+     *
+     * The closest point x²(ξ) on the master surface, the unit normal n there
+     * pointing out of the master, and dim−1 unit tangents completing an
+     * orthonormal basis. The gap of a slave position x is g_n = (x − x²)·n.
+     */
+    template <int dim>
+    struct Pairing
+    {
+      Point<dim>                                   master_point;
+      Tensor<1, dim>                               normal;
+      std::array<Tensor<1, dim>, dim - 1>          tangents;
+
+      /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
+      double
+      gap(const Point<dim> &x) const
+      {
+        return (x - master_point) * normal;
+      }
+    };
+
+    /**
+     * @brief Orthonormal tangents completing the unit normal @p n.
+     */
+    template <int dim>
+    std::array<Tensor<1, dim>, dim - 1>
+    tangent_basis(const Tensor<1, dim> &n);
+
+    /**
+     * @brief Interface of rigid analytic obstacles (the master surface).
+     */
+    template <int dim>
+    class Interface
+    {
+    public:
+      virtual ~Interface() = default;
+
+      /** @brief Closest point, normal and tangents for a slave position @p x. */
+      virtual Pairing<dim>
+      project(const Point<dim> &x) const = 0;
+
+      /**
+       * @brief True when the pairing of a frozen normal is exact for every
+       * position (a plane), so the geometry loop needs only one iteration.
+       */
+      virtual bool
+      is_flat() const = 0;
+    };
+
+    /** @brief The registry of obstacles for dimension @p dim. */
+    template <int dim>
+    using Registry = PluginRegistry<Interface<dim>>;
+
+    /** @brief Declare the `Obstacle` subsection with every registered obstacle. */
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /** @brief Build the obstacle chosen in the `Obstacle` subsection. */
+    template <int dim>
+    std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm);
+  } // namespace Obstacles
+} // namespace StabilizedLagrangian

@@ -1,0 +1,162 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+
+#include <deal.II/fe/component_mask.h>
+
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace StabilizedLagrangian
+{
+  /**
+   * Typed parameter structs, each declared and parsed once and passed down.
+   * The plug-in areas (geometry, obstacle, material, friction law) declare
+   * their own subsections.
+   */
+  namespace Parameters
+  {
+    using namespace dealii;
+
+    /** @brief Contact quadrature: statuses live at these points (DESIGN §4). */
+    enum class ContactQuadrature
+    {
+      gauss,
+      gauss_lobatto
+    };
+
+    /** @brief `Contact` subsection: Γc, augmentation parameters, FE pair. */
+    struct Contact
+    {
+      std::set<types::boundary_id> boundary_ids;
+      double                       r_n = 0.;
+      double                       r_t = 0.;
+      std::string                  fe_pair;
+      ContactQuadrature            quadrature = ContactQuadrature::gauss_lobatto;
+
+      static void
+      declare_parameters(ParameterHandler &prm, const std::string &fe_pairs);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** @brief A prescribed displacement on some components of a boundary. */
+    template <int dim>
+    struct DirichletCondition
+    {
+      types::boundary_id                             boundary_id;
+      ComponentMask                                  components;
+      std::shared_ptr<Functions::ParsedFunction<dim>> displacement;
+    };
+
+    /** @brief A prescribed traction (MPa) on a boundary. */
+    template <int dim>
+    struct NeumannCondition
+    {
+      types::boundary_id                             boundary_id;
+      std::shared_ptr<Functions::ParsedFunction<dim>> traction;
+    };
+
+    /** @brief `Boundary conditions` subsection: Dirichlet and Neumann slots. */
+    template <int dim>
+    struct BoundaryConditions
+    {
+      static constexpr unsigned int n_dirichlet_slots = 3;
+      static constexpr unsigned int n_neumann_slots   = 2;
+
+      std::vector<DirichletCondition<dim>> dirichlet;
+      std::vector<NeumannCondition<dim>>   neumann;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** @brief `Load stepping` subsection. */
+    struct LoadStepping
+    {
+      double       end_time;
+      unsigned int n_steps;
+      unsigned int max_cuts;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** @brief Whether the Newton tolerance applies to the residual or to its ratio to the first one. */
+    enum class ResidualCriterion
+    {
+      absolute,
+      relative
+    };
+
+    /** @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops (DESIGN §3). */
+    struct NonlinearSolver
+    {
+      unsigned int      geometry_max_iterations;
+      double            geometry_tolerance;
+      unsigned int      friction_max_iterations;
+      double            friction_tolerance;
+      unsigned int      status_max_iterations;
+      unsigned int      newton_max_iterations;
+      double            newton_tolerance;
+      ResidualCriterion newton_criterion;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** @brief `Linear solver` subsection. */
+    struct LinearSolver
+    {
+      std::string direct_solver;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** @brief `Output` subsection. */
+    struct Output
+    {
+      std::string directory;
+      bool        write_vtu;
+      bool        write_profiles;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief Declare every entry of a run in dimension @p dim, plug-in subsections included.
+     */
+    template <int dim>
+    void
+    declare_all(ParameterHandler &prm);
+
+    /**
+     * @brief Read `Dimension` from a parameter file or string without declaring the rest.
+     * @param text file name, or the file content if @p is_file is false
+     */
+    unsigned int
+    read_dimension(const std::string &text, const bool is_file);
+
+    /**
+     * @brief Parse a parameter file (or string) into @p prm with a clear error on failure.
+     */
+    void
+    parse(ParameterHandler &prm, const std::string &text, const bool is_file);
+  } // namespace Parameters
+} // namespace StabilizedLagrangian

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <array>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace StabilizedLagrangian
+{
+  /**
+   * @brief One innermost loop of the nested algorithm: the Newton iterations
+   * of one status iteration (one row of iterations.csv, the seed's table).
+   */
+  struct InnerLoopRecord
+  {
+    unsigned int geometry_iteration;
+    unsigned int friction_iteration;
+    unsigned int status_iteration;
+    unsigned int newton_iterations;
+    double       residual;
+    unsigned int status_changes;
+  };
+
+  /**
+   * @brief Statistics of one load step (one row of statistics.csv, DESIGN §3).
+   */
+  struct StepStatistics
+  {
+    unsigned int                 step = 0;
+    double                       time = 0.;
+    double                       step_size = 0.;
+    unsigned int                 cuts = 0;
+    unsigned int                 geometry_iterations = 0;
+    unsigned int                 friction_iterations = 0;
+    unsigned int                 status_iterations   = 0;
+    unsigned int                 newton_iterations   = 0;
+    double                       final_residual      = 0.;
+    unsigned int                 contact_points      = 0;
+    unsigned int                 points_in_contact   = 0;
+    unsigned int                 points_stick        = 0;
+    unsigned int                 points_slip         = 0;
+    double                       normal_force        = 0.;
+    double                       tangential_force    = 0.;
+    std::array<double, 3>        contact_force       = {{0., 0., 0.}};
+    double                       wall_time           = 0.;
+    std::vector<InnerLoopRecord> inner_loops;
+  };
+
+  /**
+   * @brief Writes statistics.csv and iterations.csv on rank 0, one row at a time
+   * and flushed, so the rows of converged steps survive a failing run.
+   */
+  class StatisticsWriter
+  {
+  public:
+    /** @brief Create both files in @p directory and write their headers (rank 0 only). */
+    void
+    open(const std::string &directory, const unsigned int dim, const bool is_root);
+
+    /** @brief Append the rows of one converged load step. */
+    void
+    write(const StepStatistics &stats);
+
+    /** @brief Total Newton iterations so far. */
+    unsigned int
+    cumulative_newton_iterations() const
+    {
+      return cumulative_newton;
+    }
+
+  private:
+    bool          root = false;
+    unsigned int  dimension = 2;
+    unsigned int  cumulative_newton = 0;
+    std::ofstream statistics_file;
+    std::ofstream iterations_file;
+  };
+} // namespace StabilizedLagrangian

@@ -1,0 +1,307 @@
+#pragma once
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <stabilized_lagrangian/contact/friction_law.h>
+#include <stabilized_lagrangian/discretization/fe_pair.h>
+#include <stabilized_lagrangian/geometry/scene.h>
+#include <stabilized_lagrangian/materials/material.h>
+#include <stabilized_lagrangian/obstacles/obstacle.h>
+#include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/postprocessing/statistics.h>
+
+namespace StabilizedLagrangian
+{
+  using namespace dealii;
+
+  /**
+   * @brief State frozen at one contact integration point by the outer loops
+   * (DESIGN §3): pairing and normal (geometry loop), friction threshold
+   * (friction loop), contact status (status loop).
+   */
+  template <int dim>
+  struct ContactPointState
+  {
+    Obstacles::Pairing<dim> pairing;
+    double                  friction_threshold = 0.;
+    bool                    in_contact         = false;
+  };
+
+  /**
+   * @brief Fields of the current iterate at one contact point.
+   */
+  template <int dim>
+  struct ContactKinematics
+  {
+    Point<dim>         position;          ///< current position x = X + u
+    Tensor<1, dim>     displacement;      ///< u
+    Tensor<1, dim>     step_increment;    ///< Δu over the load step
+    double             contact_pressure = 0.; ///< λ_n
+    Tensor<1, dim - 1> semi_multiplier;   ///< Λ in the tangent basis
+    double             JxW = 0.;
+  };
+
+  /**
+   * @brief Quasi-static frictional contact of a deformable body with a rigid
+   * obstacle, stabilized Lagrangian mixed formulation (DESIGN §2).
+   *
+   * Unknowns: displacement u on the body, contact pressure λ_n and friction
+   * semi-multiplier Λ on Γc only, assembled as one monolithic system
+   * [u | λ_n, Λ] on distributed Trilinos objects. The load-step loop and the
+   * nested fixed points live in nested_loops.cc, assembly and contact
+   * evaluation in contact_problem.cc, output in output.cc.
+   */
+  template <int dim>
+  class ContactProblem
+  {
+  public:
+    /**
+     * @brief Build the problem from parsed parameters (declared by
+     * Parameters::declare_all<dim>).
+     * @param prm the parsed parameters
+     * @param verbose print the progress to screen (rank 0)
+     */
+    ContactProblem(ParameterHandler &prm, const bool verbose = true);
+
+    /** @brief Solve every load step; returns false if a step could not be solved. */
+    bool
+    run();
+
+    /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points. */
+    void
+    setup();
+
+    /**
+     * @brief Assemble the residual and (optionally) the Jacobian at the current
+     * iterate with the contact statuses, thresholds and pairings frozen.
+     */
+    void
+    assemble_newton_system(const bool assemble_matrix = true);
+
+    /** @brief Residual max norm in force units (multiplier rows scaled by r_n, r_t). */
+    double
+    residual_norm() const;
+
+    /** @brief Number of displacement DoFs (the first block of the monolithic system). */
+    types::global_dof_index
+    n_displacement_dofs() const
+    {
+      return n_u;
+    }
+
+    /** @brief Number of multiplier DoFs on Γc (the second block). */
+    types::global_dof_index
+    n_multiplier_dofs() const
+    {
+      return n_multipliers;
+    }
+
+    /** @brief The monolithic iterate (locally owned part); writable, for tests. */
+    TrilinosWrappers::MPI::Vector &
+    current_solution()
+    {
+      return solution;
+    }
+
+    /** @brief Residual from the last assembly. */
+    const TrilinosWrappers::MPI::Vector &
+    residual() const
+    {
+      return system_rhs;
+    }
+
+    /** @brief Jacobian from the last assembly. */
+    const TrilinosWrappers::SparseMatrix &
+    jacobian() const
+    {
+      return system_matrix;
+    }
+
+    /** @brief Frozen states of the locally owned contact points; writable, for tests. */
+    std::vector<ContactPointState<dim>> &
+    contact_points()
+    {
+      return contact_states;
+    }
+
+    /** @brief Set the solution at the start of the current load step (for Δs). */
+    void
+    set_step_start_solution(const TrilinosWrappers::MPI::Vector &start);
+
+    /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row. */
+    std::vector<std::pair<types::global_dof_index, unsigned int>>
+    locally_owned_multiplier_components() const;
+
+    /** @brief Re-pair every contact point with the obstacle at the current positions. */
+    void
+    update_pairings();
+
+  private:
+    /** One face of Γc on a locally owned cell, and where its points start. */
+    struct ContactFace
+    {
+      typename DoFHandler<dim>::active_cell_iterator cell;
+      unsigned int                                   face_no;
+      unsigned int                                   first_point;
+    };
+
+    /**
+     * Evaluation of the fields on one contact face at the points of a face
+     * quadrature: used by the assembly, the loops and the output alike.
+     */
+    class FaceEvaluator
+    {
+    public:
+      FaceEvaluator(const ContactProblem &problem, const Quadrature<dim - 1> &quadrature);
+      void
+      reinit(const ContactFace &face, const TrilinosWrappers::MPI::Vector &ghosted_solution);
+      ContactKinematics<dim>
+      kinematics(const unsigned int q) const;
+
+      FEFaceValues<dim>                    u_values;
+      FEFaceValues<dim>                    m_values;
+      std::vector<types::global_dof_index> u_dofs;
+      /** monolithic indices of the multiplier DoFs with support on the face */
+      std::vector<types::global_dof_index> m_dofs;
+      /** cell-local indices of those DoFs in the multiplier element */
+      std::vector<unsigned int>            m_local;
+
+    private:
+      const ContactProblem &        problem;
+      std::vector<Tensor<1, dim>>    u_now, u_start;
+      std::vector<double>            m_coefficients;
+    };
+
+    // --- nested_loops.cc: DESIGN §3 ---
+    bool
+    solve_load_step(StepStatistics &stats);
+    bool
+    geometry_loop(StepStatistics &stats);
+    bool
+    friction_loop(StepStatistics &stats, const unsigned int geometry_iteration);
+    bool
+    status_loop(StepStatistics &stats, const unsigned int geometry_iteration, const unsigned int friction_iteration);
+    bool
+    newton_loop(StepStatistics &stats,
+                const unsigned int geometry_iteration,
+                const unsigned int friction_iteration,
+                const unsigned int status_iteration);
+    unsigned int
+    update_statuses();
+    double
+    update_friction_thresholds();
+    void
+    apply_dirichlet_values(const double time);
+
+    // --- contact_problem.cc ---
+    void
+    make_grid();
+    void
+    setup_dofs();
+    void
+    setup_multiplier_numbering();
+    void
+    setup_contact_points();
+    void
+    assemble_volume(const bool assemble_matrix);
+    void
+    assemble_contact(const bool assemble_matrix);
+    void
+    add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                             const unsigned int                                    face_no,
+                             Functions::ParsedFunction<dim> &                      traction,
+                             Vector<double> &                                      cell_rhs) const;
+    double
+    relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
+    void
+    print_step_line(const StepStatistics &stats, const double elapsed) const;
+    void
+    update_ghosts();
+    /** Call f(state, kinematics) at every locally owned contact point. */
+    template <typename Function>
+    void
+    for_each_contact_point(const Function &f)
+    {
+      FaceEvaluator evaluator(*this, contact_quadrature);
+      for (const auto &face : contact_faces)
+        {
+          evaluator.reinit(face, ghosted_solution);
+          for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+            f(contact_states[face.first_point + q], evaluator.kinematics(q));
+        }
+    }
+    void
+    compute_contact_statistics(StepStatistics &stats);
+
+    // --- output.cc ---
+    void
+    output_results(const unsigned int step, const double time);
+
+    MPI_Comm           mpi_communicator;
+    ConditionalOStream pcout;
+    TimerOutput        timer;
+
+    Parameters::Contact                 contact_parameters;
+    Parameters::BoundaryConditions<dim> boundary_conditions;
+    Parameters::LoadStepping            load_stepping;
+    Parameters::NonlinearSolver         solver_parameters;
+    Parameters::LinearSolver            linear_solver_parameters;
+    Parameters::Output                  output_parameters;
+
+    std::unique_ptr<Geometry::Interface<dim>>        geometry;
+    std::unique_ptr<Obstacles::Interface<dim>>       obstacle;
+    std::unique_ptr<Materials::Interface<dim>>       material;
+    std::unique_ptr<FrictionLaws::Interface>         friction_law;
+    std::unique_ptr<Discretization::FEPair<dim>>     fe_pair;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    std::unique_ptr<FiniteElement<dim>>       fe_u, fe_m;
+    DoFHandler<dim>                           dof_handler_u, dof_handler_m;
+    Quadrature<dim>                           cell_quadrature;
+    Quadrature<dim - 1>                       contact_quadrature;
+
+    types::global_dof_index n_u           = 0;
+    types::global_dof_index n_multipliers = 0;
+    IndexSet                locally_owned, locally_relevant;
+    IndexSet                locally_owned_u, locally_relevant_u;
+
+    AffineConstraints<double> newton_constraints;   ///< hanging nodes + homogeneous Dirichlet
+    AffineConstraints<double> hanging_constraints;  ///< hanging nodes only
+
+    TrilinosWrappers::SparseMatrix system_matrix;
+    TrilinosWrappers::MPI::Vector  system_rhs;
+    TrilinosWrappers::MPI::Vector  solution;          ///< owned
+    TrilinosWrappers::MPI::Vector  ghosted_solution;  ///< relevant, kept in sync with solution
+    TrilinosWrappers::MPI::Vector  step_start;        ///< relevant, solution at the step start
+    TrilinosWrappers::MPI::Vector  residual_scaling;  ///< 1, r_n or r_t per owned row
+
+    std::vector<ContactFace>            contact_faces;
+    std::vector<ContactPointState<dim>> contact_states;
+
+    double             time = 0.;
+    bool               verbose;
+    bool               geometry_loop_needed = true;
+    std::string        parameters_used;
+    std::vector<std::pair<double, std::string>> pvd_records;
+    StatisticsWriter   statistics;
+
+    template <int>
+    friend class ContactOutput;
+  };
+} // namespace StabilizedLagrangian

@@ -1,0 +1,141 @@
+#include <deal.II/base/patterns.h>
+
+#include <stabilized_lagrangian/contact/friction_law.h>
+
+#include <algorithm>
+
+namespace StabilizedLagrangian
+{
+  namespace FrictionLaws
+  {
+    /** @brief Coulomb friction, s = μ max(λ_n, 0); frictionless when μ = 0. */
+    class Coulomb : public Interface
+    {
+    public:
+      explicit Coulomb(const double mu)
+        : mu(mu)
+      {
+        if (!(mu >= 0.))
+          throw InputError("Contact/Friction law/Coulomb/Friction coefficient must be >= 0, got " +
+                           std::to_string(mu) + ".");
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Friction coefficient",
+                          "0.1",
+                          Patterns::Double(),
+                          "Coulomb coefficient μ >= 0; 0 means frictionless (no friction "
+                          "unknowns, no friction loop).");
+      }
+
+      bool
+      has_friction() const override
+      {
+        return mu > 0.;
+      }
+
+      double
+      threshold(const double contact_pressure) const override
+      {
+        return mu * std::max(contact_pressure, 0.);
+      }
+
+      double
+      friction_coefficient() const override
+      {
+        return mu;
+      }
+
+      bool
+      threshold_depends_on_pressure() const override
+      {
+        return true;
+      }
+
+    private:
+      const double mu;
+    };
+
+    /** @brief Tresca friction: a fixed threshold s wherever the point is in contact. */
+    class Tresca : public Interface
+    {
+    public:
+      explicit Tresca(const double s)
+        : s(s)
+      {
+        if (!(s >= 0.))
+          throw InputError("Contact/Friction law/Tresca/Threshold must be >= 0.");
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Threshold", "10", Patterns::Double(), "Friction threshold s >= 0 (MPa).");
+      }
+
+      bool
+      has_friction() const override
+      {
+        return s > 0.;
+      }
+
+      double
+      threshold(const double) const override
+      {
+        return s;
+      }
+
+      double
+      friction_coefficient() const override
+      {
+        return 1.;
+      }
+
+      bool
+      threshold_depends_on_pressure() const override
+      {
+        return false;
+      }
+
+    private:
+      const double s;
+    };
+
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Friction law");
+      Registry::declare_parameters(prm, "Coulomb", "Friction law on the contact boundary.");
+      prm.leave_subsection();
+    }
+
+    std::unique_ptr<Interface>
+    create(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Friction law");
+      auto law = Registry::create(prm);
+      prm.leave_subsection();
+      return law;
+    }
+
+    namespace
+    {
+      const bool registered_coulomb = Registry::add(
+        "Coulomb",
+        "Coulomb friction, threshold μ λ_n",
+        &Coulomb::declare_parameters,
+        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
+          return std::make_unique<Coulomb>(prm.get_double("Friction coefficient"));
+        });
+      const bool registered_tresca = Registry::add(
+        "Tresca",
+        "Tresca friction, fixed threshold",
+        &Tresca::declare_parameters,
+        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
+          return std::make_unique<Tresca>(prm.get_double("Threshold"));
+        });
+    } // namespace
+  }   // namespace FrictionLaws
+} // namespace StabilizedLagrangian

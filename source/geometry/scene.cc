@@ -1,0 +1,221 @@
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <stabilized_lagrangian/geometry/scene.h>
+
+namespace StabilizedLagrangian
+{
+  namespace Geometry
+  {
+    /**
+     * @brief Rectangular block (the patin of seed Fig. 2): x in [−L/2, L/2],
+     * height H above the plane y = 0 (2D) or z = 0 (3D), width W in y (3D).
+     */
+    template <int dim>
+    class Block : public Interface<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Length", "100", Patterns::Double(), "Extent in x (mm), > 0.");
+        prm.declare_entry("Height", "50", Patterns::Double(), "Extent in the vertical direction (mm), > 0.");
+        prm.declare_entry("Width", "50", Patterns::Double(), "Extent in y, 3D only (mm), > 0.");
+        prm.declare_entry("Subdivisions",
+                          dim == 2 ? "2, 1" : "2, 1, 1",
+                          Patterns::List(Patterns::Integer(1), dim, dim),
+                          "Cells of the coarse mesh along x, (y,) vertical.");
+        prm.declare_entry("Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+      }
+
+      explicit Block(const ParameterHandler &prm)
+        : length(prm.get_double("Length"))
+        , height(prm.get_double("Height"))
+        , width(prm.get_double("Width"))
+        , refinements(prm.get_integer("Global refinements"))
+      {
+        for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
+          subdivisions.push_back(Utilities::string_to_int(s));
+        if (!(length > 0. && height > 0. && width > 0.))
+          throw InputError("Geometry/block: Length, Height and Width must be > 0.");
+      }
+
+      void
+      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      {
+        Point<dim> lower, upper;
+        lower[0]       = -length / 2.;
+        upper[0]       = length / 2.;
+        upper[dim - 1] = height;
+        if (dim == 3)
+          {
+            lower[1] = -width / 2.;
+            upper[1] = width / 2.;
+          }
+        GridGenerator::subdivided_hyper_rectangle(triangulation, subdivisions, lower, upper, true);
+        if (dim == 3)
+          {
+            // colorize numbers y faces 2/3 and z faces 4/5; the convention wants
+            // the vertical faces to be 2 (bottom) and 3 (top)
+            const std::map<types::boundary_id, types::boundary_id> renumber = {
+              {2, 4}, {3, 5}, {4, 2}, {5, 3}};
+            for (const auto &cell : triangulation.active_cell_iterators())
+              for (const auto &face : cell->face_iterators())
+                if (face->at_boundary() && renumber.count(face->boundary_id()))
+                  face->set_boundary_id(renumber.at(face->boundary_id()));
+          }
+        triangulation.refine_global(refinements);
+      }
+
+    private:
+      const double              length, height, width;
+      const unsigned int        refinements;
+      std::vector<unsigned int> subdivisions;
+    };
+
+    /**
+     * @brief Half disc (2D: a cylinder in plane strain) or half ball (3D) of radius R
+     * whose curved side touches the plane y = 0 (z = 0) at the origin, for the Hertz
+     * problem. The flat side (id 3) is at height R; the curved faces within
+     * `Contact zone radius` of the origin get id 2, the rest id 0. Cells near
+     * the origin are refined `Local refinements` times.
+     */
+    template <int dim>
+    class HalfBall : public Interface<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Radius", "100", Patterns::Double(), "Radius R (mm), > 0.");
+        prm.declare_entry("Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry("Local refinements",
+                          "3",
+                          Patterns::Integer(0, 12),
+                          "Refinements of the cells within `Local refinement radius` of the "
+                          "lowest point, after the uniform ones.");
+        prm.declare_entry("Local refinement radius",
+                          "30",
+                          Patterns::Double(),
+                          "Distance (mm) from the lowest point within which cells are refined.");
+        prm.declare_entry("Contact zone radius",
+                          "20",
+                          Patterns::Double(),
+                          "Curved faces within this distance (mm) of the lowest point form "
+                          "the candidate contact surface (id 2). Must be smaller than the "
+                          "local refinement radius so that no hanging node lies on it.");
+      }
+
+      explicit HalfBall(const ParameterHandler &prm)
+        : radius(prm.get_double("Radius"))
+        , global_refinements(prm.get_integer("Global refinements"))
+        , local_refinements(prm.get_integer("Local refinements"))
+        , refinement_radius(prm.get_double("Local refinement radius"))
+        , contact_radius(prm.get_double("Contact zone radius"))
+      {
+        if (!(radius > 0.))
+          throw InputError("Geometry/half ball/Radius must be > 0.");
+      }
+
+      void
+      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      {
+        GridGenerator::half_hyper_ball(triangulation, Point<dim>(), radius);
+        double min_x = 0.;
+        for (const auto &v : triangulation.get_vertices())
+          min_x = std::min(min_x, v[0]);
+        const bool kept_positive_x = (min_x > -1e-10 * radius);
+        // an orientation-preserving rotation taking the kept half below the centre,
+        // then a shift putting the lowest point at the origin
+        GridTools::transform(
+          [&](const Point<dim> &p) {
+            Point<dim> q = p;
+            q[0]         = kept_positive_x ? p[dim - 1] : -p[dim - 1];
+            q[dim - 1]   = kept_positive_x ? -p[0] : p[0];
+            q[dim - 1] += radius;
+            return q;
+          },
+          triangulation);
+        Point<dim> center;
+        center[dim - 1] = radius;
+        triangulation.set_manifold(0, SphericalManifold<dim>(center));
+        triangulation.refine_global(global_refinements);
+        for (unsigned int step = 0; step < local_refinements; ++step)
+          {
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned() && cell->center().norm() < refinement_radius)
+                cell->set_refine_flag();
+            triangulation.execute_coarsening_and_refinement();
+          }
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                if (face->boundary_id() == 1)
+                  face->set_boundary_id(3);
+                else if (face->center().norm() < contact_radius)
+                  face->set_boundary_id(2);
+                else
+                  face->set_boundary_id(0);
+              }
+      }
+
+    private:
+      const double       radius;
+      const unsigned int global_refinements, local_refinements;
+      const double       refinement_radius, contact_radius;
+    };
+
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      Registry<dim>::declare_parameters(prm, "block", "Mesh of the deformable body.");
+      prm.leave_subsection();
+    }
+
+    template <int dim>
+    std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      auto geometry = Registry<dim>::create(prm);
+      prm.leave_subsection();
+      return geometry;
+    }
+
+    namespace
+    {
+      template <int dim>
+      bool
+      register_geometries()
+      {
+        Registry<dim>::add("block",
+                           "rectangular block resting on y = 0 (z = 0 in 3D)",
+                           &Block<dim>::declare_parameters,
+                           [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
+                             return std::make_unique<Block<dim>>(prm);
+                           });
+        return Registry<dim>::add("half ball",
+                                  "half disc / half ball touching y = 0 (z = 0) at the origin "
+                                  "(Hertz problem)",
+                                  &HalfBall<dim>::declare_parameters,
+                                  [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
+                                    return std::make_unique<HalfBall<dim>>(prm);
+                                  });
+      }
+      const bool registered_2d = register_geometries<2>();
+      const bool registered_3d = register_geometries<3>();
+    } // namespace
+
+    template void declare_parameters<2>(ParameterHandler &);
+    template void declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Interface<2>> create<2>(ParameterHandler &);
+    template std::unique_ptr<Interface<3>> create<3>(ParameterHandler &);
+  } // namespace Geometry
+} // namespace StabilizedLagrangian

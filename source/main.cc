@@ -1,0 +1,101 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <default_scene.h>
+
+#include <iostream>
+
+namespace
+{
+  using namespace dealii;
+  using namespace StabilizedLagrangian;
+
+  const char *usage = R"(Usage: stabilized_lagrangian [input.prm]
+       stabilized_lagrangian --print-parameters [2|3]
+       stabilized_lagrangian --help
+
+Quasi-static frictional contact with the stabilized Lagrangian mixed
+formulation (nested fixed points: geometry, friction threshold, contact
+status, Newton). Without an argument the built-in default scene runs:
+the elastic patin of the seed paper (prm/patin_elastic.prm).
+
+  input.prm            run the scene described by this parameter file
+  --print-parameters   list every entry with its documentation and default
+                       (for dimension 2, or the dimension given)
+  --help               this text
+
+Output goes to the directory of the entry Output/Output directory.
+)";
+
+  template <int dim>
+  int
+  run(const std::string &text, const bool is_file)
+  {
+    ParameterHandler prm;
+    Parameters::declare_all<dim>(prm);
+    Parameters::parse(prm, text, is_file);
+    ContactProblem<dim> problem(prm);
+    return problem.run() ? 0 : 2;
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  try
+    {
+      const std::vector<std::string> args(argv + 1, argv + argc);
+      if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
+        {
+          if (root)
+            std::cout << usage;
+          return 0;
+        }
+      if (!args.empty() && args[0] == "--print-parameters")
+        {
+          const unsigned int dim = args.size() > 1 ? std::stoi(args[1]) : 2;
+          ParameterHandler   prm;
+          if (dim == 3)
+            Parameters::declare_all<3>(prm);
+          else
+            Parameters::declare_all<2>(prm);
+          if (root)
+            prm.print_parameters(std::cout, ParameterHandler::PRM);
+          return 0;
+        }
+      if (args.size() > 1 || (!args.empty() && args[0].rfind("-", 0) == 0))
+        throw InputError(std::string("Unexpected arguments.\n") + usage);
+
+      const bool        is_file = !args.empty();
+      const std::string text    = is_file ? args[0] : std::string(default_scene_prm);
+      const unsigned int dim    = Parameters::read_dimension(text, is_file);
+      return dim == 2 ? run<2>(text, is_file) : run<3>(text, is_file);
+    }
+  catch (const InputError &e)
+    {
+      if (root)
+        std::cerr << "Input error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const ExceptionBase &e)
+    {
+      if (root)
+        {
+          std::cerr << "Error: ";
+          e.print_info(std::cerr);
+          std::cerr << std::endl;
+        }
+      return 1;
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "Error: " << e.what() << std::endl;
+      return 1;
+    }
+}

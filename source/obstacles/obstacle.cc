@@ -1,0 +1,227 @@
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+
+#include <stabilized_lagrangian/obstacles/obstacle.h>
+
+namespace StabilizedLagrangian
+{
+  namespace Obstacles
+  {
+    template <int dim>
+    std::array<Tensor<1, dim>, dim - 1>
+    tangent_basis(const Tensor<1, dim> &n)
+    {
+      std::array<Tensor<1, dim>, dim - 1> t;
+      if constexpr (dim == 2)
+        {
+          t[0][0] = n[1];
+          t[0][1] = -n[0];
+        }
+      else
+        {
+          // the coordinate axis least aligned with n gives a well-conditioned t1
+          unsigned int axis = 0;
+          for (unsigned int d = 1; d < dim; ++d)
+            if (std::abs(n[d]) < std::abs(n[axis]))
+              axis = d;
+          Tensor<1, dim> e;
+          e[axis] = 1.;
+          t[0]    = e - (e * n) * n;
+          t[0] /= t[0].norm();
+          t[1] = cross_product_3d(n, t[0]);
+        }
+      return t;
+    }
+
+    namespace
+    {
+      Tensor<1, 3>
+      parse_vector(const std::string &entry, const std::string &text, const unsigned int dim)
+      {
+        const std::vector<double> values =
+          Utilities::string_to_double(Utilities::split_string_list(text));
+        if (values.size() != dim)
+          throw InputError(entry + " needs " + std::to_string(dim) +
+                           " comma-separated numbers, got '" + text + "'.");
+        Tensor<1, 3> v;
+        for (unsigned int d = 0; d < dim; ++d)
+          v[d] = values[d];
+        return v;
+      }
+
+      template <int dim>
+      Point<dim>
+      to_point(const Tensor<1, 3> &v)
+      {
+        Point<dim> p;
+        for (unsigned int d = 0; d < dim; ++d)
+          p[d] = v[d];
+        return p;
+      }
+    } // namespace
+
+    /**
+     * @brief Rigid half-space below a plane through a point with outward unit normal.
+     */
+    template <int dim>
+    class Plane : public Interface<dim>
+    {
+    public:
+      Plane(const Point<dim> &point, const Tensor<1, dim> &normal)
+        : point(point)
+        , normal(normal / normal.norm())
+        , tangents(tangent_basis(this->normal))
+      {}
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Point",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "A point of the plane (mm).");
+        prm.declare_entry("Normal",
+                          dim == 2 ? "0, 1" : "0, 0, 1",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "Normal of the plane pointing out of the obstacle, towards the body.");
+      }
+
+      static std::unique_ptr<Interface<dim>>
+      create(const ParameterHandler &prm)
+      {
+        const Point<dim> normal =
+          to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
+        if (normal.norm() == 0.)
+          throw InputError("Obstacle/plane/Normal must not be the zero vector.");
+        return std::make_unique<Plane<dim>>(
+          to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
+          Tensor<1, dim>(normal));
+      }
+
+      Pairing<dim>
+      project(const Point<dim> &x) const override
+      {
+        Pairing<dim> pairing;
+        pairing.normal       = normal;
+        pairing.tangents     = tangents;
+        pairing.master_point = x - ((x - point) * normal) * normal;
+        return pairing;
+      }
+
+      bool
+      is_flat() const override
+      {
+        return true;
+      }
+
+    private:
+      const Point<dim>                          point;
+      const Tensor<1, dim>                      normal;
+      const std::array<Tensor<1, dim>, dim - 1> tangents;
+    };
+
+    /**
+     * @brief Rigid disc (2D, a cylinder in plane strain) or ball (3D); the body is outside.
+     */
+    template <int dim>
+    class Ball : public Interface<dim>
+    {
+    public:
+      Ball(const Point<dim> &center, const double radius)
+        : center(center)
+        , radius(radius)
+      {
+        if (!(radius > 0.))
+          throw InputError("Obstacle/ball/Radius must be > 0.");
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Center",
+                          dim == 2 ? "0, -100" : "0, 0, -100",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "Centre of the rigid disc (2D) or ball (3D), mm.");
+        prm.declare_entry("Radius", "100", Patterns::Double(), "Radius (mm), > 0.");
+      }
+
+      static std::unique_ptr<Interface<dim>>
+      create(const ParameterHandler &prm)
+      {
+        return std::make_unique<Ball<dim>>(
+          to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
+          prm.get_double("Radius"));
+      }
+
+      Pairing<dim>
+      project(const Point<dim> &x) const override
+      {
+        Pairing<dim>         pairing;
+        const Tensor<1, dim> d = x - center;
+        const double         distance = d.norm();
+        if (distance > 0.)
+          pairing.normal = d / distance;
+        else
+          pairing.normal[dim - 1] = 1.;
+        pairing.master_point = center + radius * pairing.normal;
+        pairing.tangents     = tangent_basis(pairing.normal);
+        return pairing;
+      }
+
+      bool
+      is_flat() const override
+      {
+        return false;
+      }
+
+    private:
+      const Point<dim> center;
+      const double     radius;
+    };
+
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Obstacle");
+      Registry<dim>::declare_parameters(prm, "plane", "Rigid analytic obstacle (the master).");
+      prm.leave_subsection();
+    }
+
+    template <int dim>
+    std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Obstacle");
+      auto obstacle = Registry<dim>::create(prm);
+      prm.leave_subsection();
+      return obstacle;
+    }
+
+    namespace
+    {
+      template <int dim>
+      bool
+      register_obstacles()
+      {
+        Registry<dim>::add("plane",
+                           "rigid half-space bounded by a plane",
+                           &Plane<dim>::declare_parameters,
+                           &Plane<dim>::create);
+        return Registry<dim>::add("ball",
+                                  "rigid disc (2D cylinder) or sphere (3D); the body is outside",
+                                  &Ball<dim>::declare_parameters,
+                                  &Ball<dim>::create);
+      }
+      const bool registered_2d = register_obstacles<2>();
+      const bool registered_3d = register_obstacles<3>();
+    } // namespace
+
+    template std::array<Tensor<1, 2>, 1> tangent_basis<2>(const Tensor<1, 2> &);
+    template std::array<Tensor<1, 3>, 2> tangent_basis<3>(const Tensor<1, 3> &);
+    template void declare_parameters<2>(ParameterHandler &);
+    template void declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Interface<2>> create<2>(ParameterHandler &);
+    template std::unique_ptr<Interface<3>> create<3>(ParameterHandler &);
+  } // namespace Obstacles
+} // namespace StabilizedLagrangian

@@ -1,0 +1,368 @@
+#include <deal.II/base/utilities.h>
+
+#include <stabilized_lagrangian/contact/friction_law.h>
+#include <stabilized_lagrangian/discretization/fe_pair.h>
+#include <stabilized_lagrangian/geometry/scene.h>
+#include <stabilized_lagrangian/materials/material.h>
+#include <stabilized_lagrangian/obstacles/obstacle.h>
+#include <stabilized_lagrangian/parameters.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace StabilizedLagrangian
+{
+  namespace Parameters
+  {
+    void
+    Contact::declare_parameters(ParameterHandler &prm, const std::string &fe_pairs)
+    {
+      prm.enter_subsection("Contact");
+      prm.declare_entry("Contact boundary ids",
+                        "2",
+                        Patterns::List(Patterns::Integer(0, 255), 1),
+                        "Boundary ids of the slave contact surface Γc, which carries the "
+                        "multipliers.");
+      prm.declare_entry("r_n",
+                        "1e4",
+                        Patterns::Double(),
+                        "Normal augmentation parameter r_n > 0 (N/mm^3).");
+      prm.declare_entry("r_t",
+                        "1",
+                        Patterns::Double(),
+                        "Tangential augmentation parameter r_t > 0 (1/mm).");
+      prm.declare_entry("Finite element pair",
+                        "Q1/P1",
+                        Patterns::Selection(fe_pairs),
+                        "Displacement / multiplier spaces (λ_n and Λ together).");
+      prm.declare_entry("Contact quadrature",
+                        "Gauss-Lobatto",
+                        Patterns::Selection("Gauss|Gauss-Lobatto"),
+                        "Quadrature on Γc; the contact and stick/slip statuses live at its "
+                        "points. Gauss-Lobatto puts them at the multiplier nodes.");
+      FrictionLaws::declare_parameters(prm);
+      prm.leave_subsection();
+    }
+
+    void
+    Contact::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      boundary_ids.clear();
+      for (const auto &id : Utilities::split_string_list(prm.get("Contact boundary ids")))
+        boundary_ids.insert(Utilities::string_to_int(id));
+      r_n = prm.get_double("r_n");
+      r_t = prm.get_double("r_t");
+      if (!(r_n > 0.))
+        throw InputError("Contact/r_n must be > 0 (N/mm^3), got " + prm.get("r_n") + ".");
+      if (!(r_t > 0.))
+        throw InputError("Contact/r_t must be > 0 (1/mm), got " + prm.get("r_t") + ".");
+      fe_pair    = prm.get("Finite element pair");
+      quadrature = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss :
+                                                                ContactQuadrature::gauss_lobatto;
+      prm.leave_subsection();
+    }
+
+    namespace
+    {
+      template <int dim>
+      std::string
+      component_names()
+      {
+        return dim == 2 ? "x|y" : "x|y|z";
+      }
+    } // namespace
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary conditions");
+      for (unsigned int i = 1; i <= n_dirichlet_slots; ++i)
+        {
+          prm.enter_subsection("Dirichlet " + std::to_string(i));
+          prm.declare_entry("Boundary id",
+                            "-1",
+                            Patterns::Integer(-1, 255),
+                            "Boundary id with a prescribed displacement; -1: slot unused.");
+          prm.declare_entry("Components",
+                            dim == 2 ? "x, y" : "x, y, z",
+                            Patterns::MultipleSelection(component_names<dim>()),
+                            "Displacement components that are prescribed.");
+          prm.enter_subsection("Displacement");
+          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      for (unsigned int i = 1; i <= n_neumann_slots; ++i)
+        {
+          prm.enter_subsection("Neumann " + std::to_string(i));
+          prm.declare_entry("Boundary id",
+                            "-1",
+                            Patterns::Integer(-1, 255),
+                            "Boundary id with a prescribed traction; -1: slot unused.");
+          prm.enter_subsection("Traction");
+          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      dirichlet.clear();
+      neumann.clear();
+      const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
+        auto function = std::make_shared<Functions::ParsedFunction<dim>>(dim);
+        prm.enter_subsection(name);
+        try
+          {
+            function->parse_parameters(prm);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream message;
+            e.print_info(message);
+            throw InputError("Boundary conditions/" + slot + "/" + name +
+                             ": the function could not be parsed (" + std::to_string(dim) +
+                             " components separated by ';', variables x, y" +
+                             (dim == 3 ? ", z" : "") + ", t). " + message.str());
+          }
+        prm.leave_subsection();
+        return function;
+      };
+
+      prm.enter_subsection("Boundary conditions");
+      for (unsigned int i = 1; i <= n_dirichlet_slots; ++i)
+        {
+          const std::string slot = "Dirichlet " + std::to_string(i);
+          prm.enter_subsection(slot);
+          const int id = prm.get_integer("Boundary id");
+          if (id >= 0)
+            {
+              std::vector<bool> mask(dim, false);
+              for (const auto &c : Utilities::split_string_list(prm.get("Components")))
+                mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
+              dirichlet.push_back(DirichletCondition<dim>{static_cast<types::boundary_id>(id),
+                                                          ComponentMask(mask),
+                                                          parse_function(slot, "Displacement")});
+            }
+          prm.leave_subsection();
+        }
+      for (unsigned int i = 1; i <= n_neumann_slots; ++i)
+        {
+          const std::string slot = "Neumann " + std::to_string(i);
+          prm.enter_subsection(slot);
+          const int id = prm.get_integer("Boundary id");
+          if (id >= 0)
+            neumann.push_back(NeumannCondition<dim>{static_cast<types::boundary_id>(id),
+                                                    parse_function(slot, "Traction")});
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+    void
+    LoadStepping::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Load stepping");
+      prm.declare_entry("End time", "1", Patterns::Double(), "Pseudo-time at the end of the load path, > 0.");
+      prm.declare_entry("Number of load steps", "10", Patterns::Integer(1), "Equal load steps up to the end time.");
+      prm.declare_entry("Maximum step cuts",
+                        "5",
+                        Patterns::Integer(0, 30),
+                        "A load step that fails is halved and retried up to this many times.");
+      prm.leave_subsection();
+    }
+
+    void
+    LoadStepping::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Load stepping");
+      end_time = prm.get_double("End time");
+      n_steps  = prm.get_integer("Number of load steps");
+      max_cuts = prm.get_integer("Maximum step cuts");
+      if (!(end_time > 0.))
+        throw InputError("Load stepping/End time must be > 0.");
+      prm.leave_subsection();
+    }
+
+    void
+    NonlinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      prm.enter_subsection("Geometry loop");
+      prm.declare_entry("Maximum iterations", "10", Patterns::Integer(1));
+      prm.declare_entry("Tolerance",
+                        "1e-4",
+                        Patterns::Double(0.),
+                        "Stop when max|u_k − u_{k−1}| / max|u_k| is at most this (seed §3).");
+      prm.leave_subsection();
+      prm.enter_subsection("Friction loop");
+      prm.declare_entry("Maximum iterations", "30", Patterns::Integer(1));
+      prm.declare_entry("Tolerance",
+                        "1e-4",
+                        Patterns::Double(0.),
+                        "Stop when max|s_new − s_old| / max|s_new| is at most this (seed §3).");
+      prm.leave_subsection();
+      prm.enter_subsection("Status loop");
+      prm.declare_entry("Maximum iterations",
+                        "30",
+                        Patterns::Integer(1),
+                        "Stops when no contact point changes status (seed §3).");
+      prm.leave_subsection();
+      prm.enter_subsection("Newton");
+      prm.declare_entry("Maximum iterations", "25", Patterns::Integer(1));
+      prm.declare_entry("Tolerance",
+                        "1e-6",
+                        Patterns::Double(0.),
+                        "Newton stops when the residual (max norm, in N: multiplier rows "
+                        "scaled by r_n and r_t) is at most this; with `relative`, when its "
+                        "ratio to the first residual of the loop is.");
+      prm.declare_entry("Residual",
+                        "absolute",
+                        Patterns::Selection("absolute|relative"),
+                        "absolute: the seed's criterion; relative: to the first residual.");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+    void
+    NonlinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      prm.enter_subsection("Geometry loop");
+      geometry_max_iterations = prm.get_integer("Maximum iterations");
+      geometry_tolerance      = prm.get_double("Tolerance");
+      prm.leave_subsection();
+      prm.enter_subsection("Friction loop");
+      friction_max_iterations = prm.get_integer("Maximum iterations");
+      friction_tolerance      = prm.get_double("Tolerance");
+      prm.leave_subsection();
+      prm.enter_subsection("Status loop");
+      status_max_iterations = prm.get_integer("Maximum iterations");
+      prm.leave_subsection();
+      prm.enter_subsection("Newton");
+      newton_max_iterations = prm.get_integer("Maximum iterations");
+      newton_tolerance      = prm.get_double("Tolerance");
+      newton_criterion      = prm.get("Residual") == "absolute" ? ResidualCriterion::absolute :
+                                                                  ResidualCriterion::relative;
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+    void
+    LinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      prm.declare_entry("Direct solver",
+                        "Amesos_Klu",
+                        Patterns::Selection("Amesos_Klu|Amesos_Mumps|Amesos_Superludist"),
+                        "Trilinos Amesos sparse direct solver for each Newton system.");
+      prm.leave_subsection();
+    }
+
+    void
+    LinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      direct_solver = prm.get("Direct solver");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Output directory", "output", Patterns::FileName(Patterns::FileName::output));
+      prm.declare_entry("Write vtu", "true", Patterns::Bool(), "Write .pvd/.vtu/.pvtu per load step.");
+      prm.declare_entry("Write profiles", "true", Patterns::Bool(), "Write a contact-surface profile .csv per load step.");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      directory      = prm.get("Output directory");
+      write_vtu      = prm.get_bool("Write vtu");
+      write_profiles = prm.get_bool("Write profiles");
+      prm.leave_subsection();
+    }
+
+    template <int dim>
+    void
+    declare_all(ParameterHandler &prm)
+    {
+      prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
+      Geometry::declare_parameters<dim>(prm);
+      Obstacles::declare_parameters<dim>(prm);
+      Materials::declare_parameters<dim>(prm);
+      Contact::declare_parameters(prm, Discretization::Registry<dim>::pattern());
+      BoundaryConditions<dim>::declare_parameters(prm);
+      LoadStepping::declare_parameters(prm);
+      NonlinearSolver::declare_parameters(prm);
+      LinearSolver::declare_parameters(prm);
+      Output::declare_parameters(prm);
+    }
+
+    namespace
+    {
+      std::string
+      read_file(const std::string &filename)
+      {
+        std::ifstream file(filename);
+        if (!file)
+          throw InputError("Cannot open the parameter file '" + filename + "'.");
+        std::stringstream content;
+        content << file.rdbuf();
+        return content.str();
+      }
+    } // namespace
+
+    void
+    parse(ParameterHandler &prm, const std::string &text, const bool is_file)
+    {
+      const std::string content = is_file ? read_file(text) : text;
+      try
+        {
+          prm.parse_input_from_string(content);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream message;
+          e.print_info(message);
+          throw InputError("Error in the parameter file " +
+                           (is_file ? "'" + text + "'" : std::string("(built-in)")) + ":\n" +
+                           message.str());
+        }
+    }
+
+    unsigned int
+    read_dimension(const std::string &text, const bool is_file)
+    {
+      ParameterHandler prm;
+      prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
+      const std::string content = is_file ? read_file(text) : text;
+      try
+        {
+          prm.parse_input_from_string(content, "", true);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream message;
+          e.print_info(message);
+          throw InputError("Error in the parameter file: " + message.str());
+        }
+      return prm.get_integer("Dimension");
+    }
+
+    template struct BoundaryConditions<2>;
+    template struct BoundaryConditions<3>;
+    template void declare_all<2>(ParameterHandler &);
+    template void declare_all<3>(ParameterHandler &);
+  } // namespace Parameters
+} // namespace StabilizedLagrangian

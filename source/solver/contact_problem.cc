@@ -1,0 +1,689 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <sstream>
+
+namespace StabilizedLagrangian
+{
+  template <int dim>
+  ContactProblem<dim>::ContactProblem(ParameterHandler &prm, const bool verbose)
+    : mpi_communicator(MPI_COMM_WORLD)
+    , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    , timer(mpi_communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , triangulation(mpi_communicator,
+                    typename Triangulation<dim>::MeshSmoothing(
+                      Triangulation<dim>::limit_level_difference_at_vertices))
+    , dof_handler_u(triangulation)
+    , dof_handler_m(triangulation)
+    , verbose(verbose)
+  {
+    contact_parameters.parse_parameters(prm);
+    boundary_conditions.parse_parameters(prm);
+    load_stepping.parse_parameters(prm);
+    solver_parameters.parse_parameters(prm);
+    linear_solver_parameters.parse_parameters(prm);
+    output_parameters.parse_parameters(prm);
+
+    geometry = Geometry::create<dim>(prm);
+    obstacle = Obstacles::create<dim>(prm);
+    material = Materials::create<dim>(prm);
+    prm.enter_subsection("Contact");
+    friction_law = FrictionLaws::create(prm);
+    prm.leave_subsection();
+    fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
+
+    std::ostringstream used;
+    prm.print_parameters(used, ParameterHandler::PRM);
+    parameters_used = used.str();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup()
+  {
+    TimerOutput::Scope scope(timer, "setup");
+    make_grid();
+    setup_dofs();
+    setup_contact_points();
+  }
+
+  namespace
+  {
+    std::string
+    list_ids(const std::set<types::boundary_id> &ids)
+    {
+      std::string result;
+      for (const auto id : ids)
+        result += (result.empty() ? "" : ", ") + std::to_string(id);
+      return result;
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::make_grid()
+  {
+    geometry->create_mesh(triangulation);
+
+    std::set<types::boundary_id> mesh_ids;
+    for (const auto id : triangulation.get_boundary_ids())
+      mesh_ids.insert(id);
+    const auto require = [&](const types::boundary_id id, const std::string &entry) {
+      if (mesh_ids.count(id) == 0)
+        throw InputError(entry + " = " + std::to_string(id) +
+                         ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +
+                         ".");
+    };
+    for (const auto id : contact_parameters.boundary_ids)
+      require(id, "Contact/Contact boundary ids");
+    for (const auto &bc : boundary_conditions.dirichlet)
+      require(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
+    for (const auto &bc : boundary_conditions.neumann)
+      require(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
+
+    // Multiplier DoFs at hanging vertices of Γc would need constraints of their own.
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+            for (const unsigned int g : cell->face_indices())
+              if (!cell->at_boundary(g) && cell->neighbor_is_coarser(g))
+                throw InputError("The mesh has hanging nodes on the contact boundary; this is "
+                                 "not supported yet. Refine the whole contact zone uniformly.");
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_dofs()
+  {
+    fe_u = fe_pair->displacement_element();
+    fe_m = fe_pair->multiplier_element(friction_law->has_friction() ? dim : 1);
+    dof_handler_u.distribute_dofs(*fe_u);
+    dof_handler_m.distribute_dofs(*fe_m);
+    setup_multiplier_numbering();
+
+    n_u             = dof_handler_u.n_dofs();
+    locally_owned_u = dof_handler_u.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler_u, locally_relevant_u);
+
+    IndexSet contact_block(dof_handler_m.n_dofs());
+    contact_block.add_range(0, n_multipliers);
+    IndexSet relevant_m;
+    DoFTools::extract_locally_relevant_dofs(dof_handler_m, relevant_m);
+    const IndexSet owned_multipliers    = dof_handler_m.locally_owned_dofs() & contact_block;
+    const IndexSet relevant_multipliers = relevant_m & contact_block;
+
+    locally_owned.set_size(n_u + n_multipliers);
+    locally_owned.add_indices(locally_owned_u);
+    locally_owned.add_indices(owned_multipliers, n_u);
+    locally_owned.compress();
+    locally_relevant.set_size(n_u + n_multipliers);
+    locally_relevant.add_indices(locally_relevant_u);
+    locally_relevant.add_indices(relevant_multipliers, n_u);
+    locally_relevant.compress();
+
+    const unsigned int u_degree = fe_pair->displacement_degree();
+    cell_quadrature             = QGauss<dim>(u_degree + 1);
+    if (contact_parameters.quadrature == Parameters::ContactQuadrature::gauss)
+      contact_quadrature = QGauss<dim - 1>(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
+    else
+      contact_quadrature = QGaussLobatto<dim - 1>(std::max(fe_pair->multiplier_degree(), 1u) + 1);
+
+    hanging_constraints.clear();
+    hanging_constraints.reinit(locally_relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
+    hanging_constraints.close();
+    newton_constraints.clear();
+    newton_constraints.reinit(locally_relevant);
+    newton_constraints.merge(hanging_constraints);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      VectorTools::interpolate_boundary_values(dof_handler_u,
+                                               bc.boundary_id,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               newton_constraints,
+                                               bc.components);
+    newton_constraints.close();
+
+    system_rhs.reinit(locally_owned, mpi_communicator);
+    solution.reinit(locally_owned, mpi_communicator);
+    ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
+    step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
+    residual_scaling.reinit(locally_owned, mpi_communicator);
+    residual_scaling = 1.;
+    for (const auto &[row, component] : locally_owned_multiplier_components())
+      residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
+    residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_multiplier_numbering()
+  {
+    // Number the multiplier DoFs on Γc first, [0, N_Γ), rank after rank; the
+    // others (on the rest of the skeleton) are never used.
+    std::set<types::global_dof_index>    on_contact;
+    std::vector<types::global_dof_index> dofs(fe_m->n_dofs_per_cell());
+    for (const auto &cell : dof_handler_m.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (fe_m->has_support_on_face(i, f))
+                  on_contact.insert(dofs[i]);
+            }
+
+    const IndexSet owned = dof_handler_m.locally_owned_dofs();
+    types::global_dof_index n_contact_local = 0;
+    for (const auto dof : on_contact)
+      if (owned.is_element(dof))
+        ++n_contact_local;
+    const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
+
+    types::global_dof_index contact_offset = 0, other_offset = 0;
+    const std::array<types::global_dof_index, 2> local = {{n_contact_local, n_other_local}};
+    std::array<types::global_dof_index, 2>       prefix = {{0, 0}};
+    MPI_Exscan(local.data(), prefix.data(), 2, MPI_UINT64_T, MPI_SUM, mpi_communicator);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
+      {
+        contact_offset = prefix[0];
+        other_offset   = prefix[1];
+      }
+    n_multipliers = Utilities::MPI::sum(n_contact_local, mpi_communicator);
+
+    std::vector<types::global_dof_index> new_numbers(owned.n_elements());
+    types::global_dof_index              next_contact = contact_offset;
+    types::global_dof_index              next_other   = n_multipliers + other_offset;
+    for (unsigned int k = 0; k < owned.n_elements(); ++k)
+      new_numbers[k] = on_contact.count(owned.nth_index_in_set(k)) ? next_contact++ : next_other++;
+    dof_handler_m.renumber_dofs(new_numbers);
+  }
+
+  template <int dim>
+  std::vector<std::pair<types::global_dof_index, unsigned int>>
+  ContactProblem<dim>::locally_owned_multiplier_components() const
+  {
+    std::map<types::global_dof_index, unsigned int> components;
+    std::vector<types::global_dof_index>            dofs(fe_m->n_dofs_per_cell());
+    for (const auto &cell : dof_handler_m.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (fe_m->has_support_on_face(i, f) && locally_owned.is_element(n_u + dofs[i]))
+                  components[n_u + dofs[i]] = fe_m->system_to_component_index(i).first;
+            }
+    return {components.begin(), components.end()};
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_contact_points()
+  {
+    contact_faces.clear();
+    unsigned int n_points = 0;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+            {
+              contact_faces.push_back(ContactFace{cell, f, n_points});
+              n_points += contact_quadrature.size();
+            }
+    contact_states.assign(n_points, ContactPointState<dim>());
+    if (!friction_law->threshold_depends_on_pressure())
+      for (auto &state : contact_states)
+        state.friction_threshold = friction_law->threshold(0.);
+
+    DynamicSparsityPattern dsp(locally_relevant);
+    std::vector<types::global_dof_index> u_dofs(fe_u->n_dofs_per_cell());
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(u_dofs);
+          newton_constraints.add_entries_local_to_global(u_dofs, dsp, false);
+        }
+    FaceEvaluator evaluator(*this, contact_quadrature);
+    for (const auto &face : contact_faces)
+      {
+        evaluator.reinit(face, ghosted_solution);
+        std::vector<types::global_dof_index> local_dofs = evaluator.u_dofs;
+        local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
+        newton_constraints.add_entries_local_to_global(local_dofs, dsp, false);
+      }
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, mpi_communicator, locally_relevant);
+    system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
+
+    update_pairings();
+  }
+
+  // ---------------------------------------------------------------------------
+  // Evaluation on contact faces
+
+  template <int dim>
+  ContactProblem<dim>::FaceEvaluator::FaceEvaluator(const ContactProblem &     problem,
+                                                    const Quadrature<dim - 1> &quadrature)
+    : u_values(*problem.fe_u,
+               quadrature,
+               update_values | update_quadrature_points | update_JxW_values)
+    , m_values(*problem.fe_m, quadrature, update_values)
+    , u_dofs(problem.fe_u->n_dofs_per_cell())
+    , problem(problem)
+    , u_now(quadrature.size())
+    , u_start(quadrature.size())
+  {}
+
+  template <int dim>
+  void
+  ContactProblem<dim>::FaceEvaluator::reinit(const ContactFace &                  face,
+                                             const TrilinosWrappers::MPI::Vector &ghosted)
+  {
+    u_values.reinit(face.cell, face.face_no);
+    const typename DoFHandler<dim>::active_cell_iterator m_cell(&problem.triangulation,
+                                                                face.cell->level(),
+                                                                face.cell->index(),
+                                                                &problem.dof_handler_m);
+    m_values.reinit(m_cell, face.face_no);
+    face.cell->get_dof_indices(u_dofs);
+
+    std::vector<types::global_dof_index> all_m(problem.fe_m->n_dofs_per_cell());
+    m_cell->get_dof_indices(all_m);
+    m_dofs.clear();
+    m_local.clear();
+    m_coefficients.clear();
+    for (unsigned int i = 0; i < all_m.size(); ++i)
+      if (problem.fe_m->has_support_on_face(i, face.face_no))
+        {
+          Assert(all_m[i] < problem.n_multipliers, ExcInternalError());
+          m_local.push_back(i);
+          m_dofs.push_back(problem.n_u + all_m[i]);
+          m_coefficients.push_back(ghosted(problem.n_u + all_m[i]));
+        }
+
+    const FiniteElement<dim> &fe = *problem.fe_u;
+    for (unsigned int q = 0; q < u_now.size(); ++q)
+      {
+        u_now[q]   = 0.;
+        u_start[q] = 0.;
+        for (unsigned int i = 0; i < u_dofs.size(); ++i)
+          {
+            const unsigned int c   = fe.system_to_component_index(i).first;
+            const double       phi = u_values.shape_value(i, q);
+            u_now[q][c] += ghosted(u_dofs[i]) * phi;
+            u_start[q][c] += problem.step_start(u_dofs[i]) * phi;
+          }
+      }
+  }
+
+  template <int dim>
+  ContactKinematics<dim>
+  ContactProblem<dim>::FaceEvaluator::kinematics(const unsigned int q) const
+  {
+    ContactKinematics<dim> k;
+    k.displacement   = u_now[q];
+    k.step_increment = u_now[q] - u_start[q];
+    k.position       = u_values.quadrature_point(q) + u_now[q];
+    k.JxW            = u_values.JxW(q);
+    for (unsigned int a = 0; a < m_local.size(); ++a)
+      {
+        const unsigned int c   = problem.fe_m->system_to_component_index(m_local[a]).first;
+        const double       psi = m_values.shape_value(m_local[a], q);
+        if (c == 0)
+          k.contact_pressure += m_coefficients[a] * psi;
+        else
+          k.semi_multiplier[c - 1] += m_coefficients[a] * psi;
+      }
+    return k;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::update_pairings()
+  {
+    for_each_contact_point([this](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      state.pairing = obstacle->project(k.position);
+    });
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::update_ghosts()
+  {
+    ghosted_solution = solution;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::set_step_start_solution(const TrilinosWrappers::MPI::Vector &start)
+  {
+    step_start = start;
+  }
+
+  // ---------------------------------------------------------------------------
+  // Assembly of the Newton system, DESIGN §2 with χ, s and the pairing frozen
+
+  template <int dim>
+  void
+  ContactProblem<dim>::assemble_newton_system(const bool assemble_matrix)
+  {
+    TimerOutput::Scope scope(timer, "assembly");
+    if (assemble_matrix)
+      system_matrix = 0.;
+    system_rhs = 0.;
+    assemble_volume(assemble_matrix);
+    assemble_contact(assemble_matrix);
+    if (assemble_matrix)
+      system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::assemble_volume(const bool assemble_matrix)
+  {
+    const FiniteElement<dim> &fe = *fe_u;
+    FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
+    const unsigned int        n_dofs = fe.n_dofs_per_cell();
+    const unsigned int        n_q    = cell_quadrature.size();
+    FullMatrix<double>        cell_matrix(n_dofs, n_dofs);
+    Vector<double>            cell_rhs(n_dofs);
+    std::vector<types::global_dof_index> dofs(n_dofs);
+    std::vector<double>                  coefficients(n_dofs);
+    std::vector<unsigned int>            component(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+    std::vector<Tensor<2, dim>> tangent_times_grad(n_dofs);
+
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            coefficients[i] = ghosted_solution(dofs[i]);
+          cell_matrix = 0.;
+          cell_rhs    = 0.;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              Tensor<2, dim> grad_u;
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
+              const Materials::Response<dim> response =
+                material->evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
+              if (!assemble_matrix)
+                continue;
+              // A : ∇φ_j, where ∇φ_j has only the row component[j]
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                {
+                  const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
+                  for (unsigned int k = 0; k < dim; ++k)
+                    for (unsigned int l = 0; l < dim; ++l)
+                      tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
+                }
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const Tensor<1, dim> gi = fe_values.shape_grad(i, q) * JxW;
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    cell_matrix(i, j) += tangent_times_grad[j][component[i]] * gi;
+                }
+            }
+
+          for (const auto &bc : boundary_conditions.neumann)
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
+                add_neumann_contribution(cell, f, *bc.traction, cell_rhs);
+
+          if (assemble_matrix)
+            newton_constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, system_matrix, system_rhs);
+          else
+            newton_constraints.distribute_local_to_global(cell_rhs, dofs, system_rhs);
+        }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_neumann_contribution(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const unsigned int                                    face_no,
+    Functions::ParsedFunction<dim> &                      traction,
+    Vector<double> &                                      cell_rhs) const
+  {
+    const QGauss<dim - 1> quadrature(fe_pair->displacement_degree() + 1);
+    FEFaceValues<dim>     fe_face_values(*fe_u,
+                                     quadrature,
+                                     update_values | update_quadrature_points | update_JxW_values);
+    fe_face_values.reinit(cell, face_no);
+    traction.set_time(time);
+    Vector<double> t(dim);
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      {
+        traction.vector_value(fe_face_values.quadrature_point(q), t);
+        for (unsigned int i = 0; i < fe_u->n_dofs_per_cell(); ++i)
+          cell_rhs(i) -= t(fe_u->system_to_component_index(i).first) *
+                         fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::assemble_contact(const bool assemble_matrix)
+  {
+    const double   r_n      = contact_parameters.r_n;
+    const double   r_t      = contact_parameters.r_t;
+    const bool     friction = friction_law->has_friction();
+    FaceEvaluator  evaluator(*this, contact_quadrature);
+    const unsigned int n_u_cell = fe_u->n_dofs_per_cell();
+    std::vector<unsigned int> u_component(n_u_cell);
+    for (unsigned int i = 0; i < n_u_cell; ++i)
+      u_component[i] = fe_u->system_to_component_index(i).first;
+
+    FullMatrix<double>                   local_matrix;
+    Vector<double>                       local_rhs;
+    std::vector<types::global_dof_index> local_dofs;
+    std::vector<double>                  normal_shape(n_u_cell);
+    std::vector<Tensor<1, dim - 1>>      tangential_shape(n_u_cell);
+
+    for (const auto &face : contact_faces)
+      {
+        evaluator.reinit(face, ghosted_solution);
+        const unsigned int n_m = evaluator.m_dofs.size();
+        const unsigned int n   = n_u_cell + n_m;
+        local_matrix.reinit(n, n);
+        local_rhs.reinit(n);
+        local_dofs = evaluator.u_dofs;
+        local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
+        std::vector<unsigned int> m_component(n_m);
+        for (unsigned int a = 0; a < n_m; ++a)
+          m_component[a] = fe_m->system_to_component_index(evaluator.m_local[a]).first;
+        std::vector<double> psi(n_m);
+
+        for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+          {
+            const ContactPointState<dim> &state = contact_states[face.first_point + q];
+            const ContactKinematics<dim>  k     = evaluator.kinematics(q);
+            const auto &                  n_vec = state.pairing.normal;
+            const auto &                  t_vec = state.pairing.tangents;
+
+            const double gap      = state.pairing.gap(k.position);
+            const double lambda   = k.contact_pressure;
+            const double lam_hat  = Contact::augmented_pressure(lambda, gap, r_n);
+            const double chi      = state.in_contact ? 1. : 0.;
+            const double s        = state.friction_threshold;
+            const double chi_f    = (friction && state.in_contact && s > 0.) ? 1. : 0.;
+
+            Tensor<1, dim - 1> slip;
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              slip[a] = t_vec[a] * k.step_increment;
+            const Tensor<1, dim - 1> g_hat =
+              Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
+            const Tensor<1, dim - 1> projected = Contact::project_on_unit_ball(g_hat);
+            const Tensor<2, dim - 1> d_projected = Contact::project_on_unit_ball_derivative(g_hat);
+            const double             w = k.JxW;
+
+            for (unsigned int i = 0; i < n_u_cell; ++i)
+              {
+                const double phi = evaluator.u_values.shape_value(i, q);
+                normal_shape[i]  = phi * n_vec[u_component[i]];
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  tangential_shape[i][a] = phi * t_vec[a][u_component[i]];
+              }
+            for (unsigned int a = 0; a < n_m; ++a)
+              psi[a] = evaluator.m_values.shape_value(evaluator.m_local[a], q);
+
+            // residual, DESIGN §2 (the Λ rows with the opposite sign, which makes
+            // the frozen-status Jacobian symmetric)
+            for (unsigned int i = 0; i < n_u_cell; ++i)
+              local_rhs(i) += w * (-chi * lam_hat * normal_shape[i] +
+                                   chi_f * s * (projected * tangential_shape[i]));
+            for (unsigned int a = 0; a < n_m; ++a)
+              {
+                if (m_component[a] == 0)
+                  local_rhs(n_u_cell + a) -= w * ((1. - chi) * lambda / r_n + chi * gap) * psi[a];
+                else
+                  {
+                    const unsigned int alpha = m_component[a] - 1;
+                    local_rhs(n_u_cell + a) -=
+                      w *
+                      (chi_f * (s / r_t) * (k.semi_multiplier[alpha] - projected[alpha]) +
+                       (1. - chi_f) * k.semi_multiplier[alpha]) *
+                      psi[a];
+                  }
+              }
+            if (!assemble_matrix)
+              continue;
+
+            for (unsigned int i = 0; i < n_u_cell; ++i)
+              {
+                for (unsigned int j = 0; j < n_u_cell; ++j)
+                  local_matrix(i, j) +=
+                    w * (chi * r_n * normal_shape[i] * normal_shape[j] +
+                         chi_f * s * r_t * (tangential_shape[i] * (d_projected * tangential_shape[j])));
+                for (unsigned int b = 0; b < n_m; ++b)
+                  {
+                    double value;
+                    if (m_component[b] == 0)
+                      value = -chi * normal_shape[i] * psi[b];
+                    else
+                      {
+                        const unsigned int beta = m_component[b] - 1;
+                        value = chi_f * s * (tangential_shape[i] * d_projected[beta]) * psi[b];
+                      }
+                    local_matrix(i, n_u_cell + b) += w * value;
+                    local_matrix(n_u_cell + b, i) += w * value;
+                  }
+              }
+            for (unsigned int a = 0; a < n_m; ++a)
+              for (unsigned int b = 0; b < n_m; ++b)
+                {
+                  if (m_component[a] != m_component[b])
+                    {
+                      if (m_component[a] == 0 || m_component[b] == 0)
+                        continue;
+                      const unsigned int alpha = m_component[a] - 1, beta = m_component[b] - 1;
+                      local_matrix(n_u_cell + a, n_u_cell + b) +=
+                        w * chi_f * (s / r_t) * d_projected[alpha][beta] * psi[a] * psi[b];
+                      continue;
+                    }
+                  if (m_component[a] == 0)
+                    local_matrix(n_u_cell + a, n_u_cell + b) -= w * (1. - chi) / r_n * psi[a] * psi[b];
+                  else
+                    {
+                      const unsigned int alpha = m_component[a] - 1;
+                      local_matrix(n_u_cell + a, n_u_cell + b) -=
+                        w *
+                        (chi_f * (s / r_t) * (1. - d_projected[alpha][alpha]) + (1. - chi_f)) *
+                        psi[a] * psi[b];
+                    }
+                }
+          }
+        if (assemble_matrix)
+          newton_constraints.distribute_local_to_global(local_matrix, local_rhs, local_dofs, system_matrix, system_rhs);
+        else
+          newton_constraints.distribute_local_to_global(local_rhs, local_dofs, system_rhs);
+      }
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::residual_norm() const
+  {
+    TrilinosWrappers::MPI::Vector scaled(system_rhs);
+    scaled.scale(residual_scaling);
+    return scaled.linfty_norm();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::compute_contact_statistics(StepStatistics &stats)
+  {
+    const double r_n      = contact_parameters.r_n;
+    const double r_t      = contact_parameters.r_t;
+    const bool   friction = friction_law->has_friction();
+    unsigned int counts[4] = {0, 0, 0, 0};
+    double       normal_force = 0.;
+    Tensor<1, dim> total_force, tangential_force;
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      ++counts[0];
+      if (!state.in_contact)
+        return;
+      const double lam_hat =
+        Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n);
+      normal_force += k.JxW * lam_hat;
+      total_force += k.JxW * lam_hat * state.pairing.normal;
+      ++counts[1];
+      const double s = state.friction_threshold;
+      if (!(friction && s > 0.))
+        {
+          ++counts[3];
+          return;
+        }
+      Tensor<1, dim - 1> slip;
+      for (unsigned int a = 0; a < dim - 1; ++a)
+        slip[a] = state.pairing.tangents[a] * k.step_increment;
+      const Tensor<1, dim - 1> g_hat =
+        Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
+      ++counts[Contact::is_sticking(g_hat) ? 2 : 3];
+      const Tensor<1, dim - 1> projected = Contact::project_on_unit_ball(g_hat);
+      for (unsigned int a = 0; a < dim - 1; ++a)
+        tangential_force -= k.JxW * s * projected[a] * state.pairing.tangents[a];
+    });
+    total_force += tangential_force;
+    stats.contact_points    = Utilities::MPI::sum(counts[0], mpi_communicator);
+    stats.points_in_contact = Utilities::MPI::sum(counts[1], mpi_communicator);
+    stats.points_stick      = Utilities::MPI::sum(counts[2], mpi_communicator);
+    stats.points_slip       = Utilities::MPI::sum(counts[3], mpi_communicator);
+    stats.normal_force      = Utilities::MPI::sum(normal_force, mpi_communicator);
+    const Tensor<1, dim> total      = Utilities::MPI::sum(total_force, mpi_communicator);
+    const Tensor<1, dim> tangential = Utilities::MPI::sum(tangential_force, mpi_communicator);
+    stats.tangential_force = tangential.norm();
+    for (unsigned int d = 0; d < dim; ++d)
+      stats.contact_force[d] = total[d];
+  }
+
+  template class ContactProblem<2>;
+  template class ContactProblem<3>;
+} // namespace StabilizedLagrangian

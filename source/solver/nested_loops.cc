@@ -1,0 +1,331 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/linear_solver.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace StabilizedLagrangian
+{
+  // The nested fixed points of seed §2.2 / DESIGN §3:
+  //   geometry loop → friction loop → status loop → Newton.
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::run()
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    if (root)
+      {
+        std::filesystem::create_directories(output_parameters.directory);
+        std::ofstream(output_parameters.directory + "/parameters.prm") << parameters_used;
+      }
+    MPI_Barrier(mpi_communicator);
+    setup();
+    statistics.open(output_parameters.directory, dim, root);
+
+    geometry_loop_needed = !(obstacle->is_flat() && !material->is_finite_strain());
+    pcout << "stabilized_lagrangian: " << dim << "D, "
+          << triangulation.n_global_active_cells() << " cells, " << n_u
+          << " displacement DoFs + " << n_multipliers << " multiplier DoFs on the contact boundary, "
+          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)\n";
+    if (!geometry_loop_needed)
+      pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
+    if (!friction_law->has_friction())
+      pcout << "  friction loop runs once per step: frictionless\n";
+    else if (!friction_law->threshold_depends_on_pressure())
+      pcout << "  friction loop runs once per step: fixed (Tresca) threshold\n";
+
+    output_results(0, 0.);
+
+    const double nominal_step = load_stepping.end_time / load_stepping.n_steps;
+    double       step_size    = nominal_step;
+    unsigned int step = 0, consecutive_cuts = 0;
+    Timer        wall_clock;
+    while (time < load_stepping.end_time * (1. - 1e-12))
+      {
+        step_size = std::min(step_size, load_stepping.end_time - time);
+        const TrilinosWrappers::MPI::Vector     saved_solution = solution;
+        const std::vector<ContactPointState<dim>> saved_states = contact_states;
+        const double                            saved_time     = time;
+
+        StepStatistics stats;
+        stats.step      = step + 1;
+        stats.step_size = step_size;
+        stats.cuts      = consecutive_cuts;
+        Timer step_clock;
+        time = saved_time + step_size;
+        apply_dirichlet_values(time);
+        const bool converged = solve_load_step(stats);
+        if (!converged)
+          {
+            solution       = saved_solution;
+            contact_states = saved_states;
+            time           = saved_time;
+            update_ghosts();
+            if (consecutive_cuts == load_stepping.max_cuts)
+              {
+                pcout << "ERROR: load step " << step + 1 << " from t = " << time
+                      << " did not converge after " << consecutive_cuts
+                      << " step cuts (Load stepping/Maximum step cuts). The results of the "
+                      << step << " converged steps are in " << output_parameters.directory
+                      << ".\n";
+                return false;
+              }
+            ++consecutive_cuts;
+            step_size /= 2.;
+            pcout << "  step did not converge; cutting the step to " << step_size << "\n";
+            continue;
+          }
+        ++step;
+        consecutive_cuts = 0;
+        stats.time       = time;
+        {
+          TimerOutput::Scope scope(timer, "contact search");
+          compute_contact_statistics(stats);
+        }
+        output_results(step, time);
+        step_start = ghosted_solution;
+        stats.wall_time = step_clock.wall_time();
+        statistics.write(stats);
+        print_step_line(stats, wall_clock.wall_time());
+        // grow back towards the nominal step after a cut
+        step_size = std::min(2. * step_size, nominal_step);
+      }
+    pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
+          << ", mean per load step: "
+          << static_cast<double>(statistics.cumulative_newton_iterations()) / step << "\n";
+    if (verbose)
+      timer.print_wall_time_statistics(mpi_communicator);
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::print_step_line(const StepStatistics &s, const double elapsed) const
+  {
+    const double remaining = elapsed / time * (load_stepping.end_time - time);
+    pcout << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(4)
+          << s.time << "  geometry " << s.geometry_iterations << "  friction "
+          << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
+          << std::setw(3) << s.newton_iterations << "  residual " << std::scientific
+          << std::setprecision(2) << s.final_residual << std::defaultfloat << "  contact "
+          << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
+          << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
+          << elapsed << " s, remaining ~" << remaining << " s" << std::defaultfloat << std::endl;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::apply_dirichlet_values(const double t)
+  {
+    std::map<types::global_dof_index, double> values;
+    for (const auto &bc : boundary_conditions.dirichlet)
+      {
+        bc.displacement->set_time(t);
+        VectorTools::interpolate_boundary_values(
+          dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
+      }
+    for (const auto &[index, value] : values)
+      if (locally_owned.is_element(index))
+        solution(index) = value;
+    solution.compress(VectorOperation::insert);
+    hanging_constraints.distribute(solution);
+    update_ghosts();
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::solve_load_step(StepStatistics &stats)
+  {
+    return geometry_loop(stats);
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const
+  {
+    double change = 0., size = 0.;
+    for (const auto index : locally_owned_u)
+      {
+        change = std::max(change, std::abs(solution(index) - previous(index)));
+        size   = std::max(size, std::abs(solution(index)));
+      }
+    change = Utilities::MPI::max(change, mpi_communicator);
+    size   = Utilities::MPI::max(size, mpi_communicator);
+    return size > 0. ? change / size : change;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::geometry_loop(StepStatistics &stats)
+  {
+    for (unsigned int k = 1; k <= solver_parameters.geometry_max_iterations; ++k)
+      {
+        stats.geometry_iterations = k;
+        {
+          TimerOutput::Scope scope(timer, "contact search");
+          update_pairings();
+        }
+        const TrilinosWrappers::MPI::Vector previous = solution;
+        if (!friction_loop(stats, k))
+          return false;
+        if (!geometry_loop_needed)
+          return true;
+        if (relative_displacement_change(previous) <= solver_parameters.geometry_tolerance)
+          return true;
+      }
+    pcout << "  geometry loop: no convergence in " << solver_parameters.geometry_max_iterations
+          << " iterations (Nonlinear solver/Geometry loop/Maximum iterations)\n";
+    return false;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::friction_loop(StepStatistics &stats, const unsigned int k)
+  {
+    if (!friction_law->has_friction() || !friction_law->threshold_depends_on_pressure())
+      {
+        ++stats.friction_iterations;
+        return status_loop(stats, k, 1);
+      }
+    for (unsigned int j = 1; j <= solver_parameters.friction_max_iterations; ++j)
+      {
+        ++stats.friction_iterations;
+        if (!status_loop(stats, k, j))
+          return false;
+        if (update_friction_thresholds() <= solver_parameters.friction_tolerance)
+          return true;
+      }
+    pcout << "  friction loop: no convergence in " << solver_parameters.friction_max_iterations
+          << " iterations (Nonlinear solver/Friction loop/Maximum iterations)\n";
+    return false;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::status_loop(StepStatistics &   stats,
+                                   const unsigned int k,
+                                   const unsigned int j)
+  {
+    for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
+      {
+        ++stats.status_iterations;
+        if (!newton_loop(stats, k, j, i))
+          return false;
+        const unsigned int changes = update_statuses();
+        stats.inner_loops.back().status_changes = changes;
+        if (changes == 0)
+          return true;
+      }
+    pcout << "  status loop: no convergence in " << solver_parameters.status_max_iterations
+          << " iterations (Nonlinear solver/Status loop/Maximum iterations)\n";
+    return false;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::newton_loop(StepStatistics &   stats,
+                                   const unsigned int k,
+                                   const unsigned int j,
+                                   const unsigned int i)
+  {
+    double first_residual = 0.;
+    for (unsigned int iteration = 0;; ++iteration)
+      {
+        assemble_newton_system(true);
+        const double residual = residual_norm();
+        if (!std::isfinite(residual))
+          {
+            pcout << "  Newton: the residual is not finite\n";
+            return false;
+          }
+        if (iteration == 0)
+          first_residual = residual;
+        const double tolerance =
+          solver_parameters.newton_tolerance *
+          (solver_parameters.newton_criterion == Parameters::ResidualCriterion::absolute ? 1. :
+                                                                                          first_residual);
+        if (residual <= tolerance)
+          {
+            stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, 0});
+            stats.newton_iterations += iteration;
+            stats.final_residual = residual;
+            return true;
+          }
+        if (iteration == solver_parameters.newton_max_iterations)
+          {
+            pcout << "  Newton: residual " << residual << " after " << iteration
+                  << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+            return false;
+          }
+
+        TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
+        system_rhs *= -1.;
+        bool solved;
+        {
+          TimerOutput::Scope scope(timer, "linear solve");
+          solved = LinearSolvers::solve_direct(system_matrix,
+                                               update,
+                                               system_rhs,
+                                               linear_solver_parameters.direct_solver);
+        }
+        if (!solved)
+          {
+            pcout << "  Newton: the linear solver failed (singular system?)\n";
+            return false;
+          }
+        newton_constraints.distribute(update);
+        solution += update;
+        update_ghosts();
+      }
+  }
+
+  template <int dim>
+  unsigned int
+  ContactProblem<dim>::update_statuses()
+  {
+    TimerOutput::Scope scope(timer, "contact search");
+    unsigned int       changes = 0;
+    const double       r_n     = contact_parameters.r_n;
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      const bool in_contact = Contact::is_in_contact(
+        Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n));
+      if (in_contact != state.in_contact)
+        {
+          ++changes;
+          state.in_contact = in_contact;
+        }
+    });
+    return Utilities::MPI::sum(changes, mpi_communicator);
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::update_friction_thresholds()
+  {
+    TimerOutput::Scope scope(timer, "contact search");
+    double             max_change = 0., max_threshold = 0.;
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      const double s = friction_law->threshold(k.contact_pressure);
+      max_change     = std::max(max_change, std::abs(s - state.friction_threshold));
+      max_threshold  = std::max(max_threshold, s);
+      state.friction_threshold = s;
+    });
+    max_change    = Utilities::MPI::max(max_change, mpi_communicator);
+    max_threshold = Utilities::MPI::max(max_threshold, mpi_communicator);
+    if (max_threshold == 0.)
+      return max_change == 0. ? 0. : 1.;
+    return max_change / max_threshold;
+  }
+
+  template class ContactProblem<2>;
+  template class ContactProblem<3>;
+} // namespace StabilizedLagrangian
