@@ -118,6 +118,12 @@ namespace StabilizedLagrangian
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         auto function = std::make_shared<Functions::ParsedFunction<dim>>(dim);
         prm.enter_subsection(name);
+        const std::string expected = dim == 2 ? "x,y,t" : "x,y,z,t";
+        if (Utilities::split_string_list(prm.get("Variable names")).size() != dim + 1)
+          throw InputError("Boundary conditions/" + slot + "/" + name + "/Variable names = '" +
+                           prm.get("Variable names") + "': a " + std::to_string(dim) +
+                           "D function needs " + std::to_string(dim + 1) +
+                           " variable names, the coordinates then time, e.g. '" + expected + "'.");
         try
           {
             function->parse_parameters(prm);

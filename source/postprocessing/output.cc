@@ -263,7 +263,7 @@ namespace StabilizedLagrangian
             file << ",gap_mm";
             for (unsigned int d = 0; d < dim; ++d)
               file << ",slip_increment_" << "xyz"[d] << "_mm";
-            file << ",status\n" << std::setprecision(10);
+            file << ",status\n" << std::setprecision(15);
             for (const auto &row : sorted)
               {
                 for (unsigned int c = 0; c < row.size(); ++c)

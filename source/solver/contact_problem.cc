@@ -198,9 +198,9 @@ namespace StabilizedLagrangian
     const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
 
     types::global_dof_index contact_offset = 0, other_offset = 0;
-    const std::array<types::global_dof_index, 2> local = {{n_contact_local, n_other_local}};
-    std::array<types::global_dof_index, 2>       prefix = {{0, 0}};
-    MPI_Exscan(local.data(), prefix.data(), 2, MPI_UINT64_T, MPI_SUM, mpi_communicator);
+    const std::array<unsigned long long, 2> local = {{n_contact_local, n_other_local}};
+    std::array<unsigned long long, 2>       prefix = {{0, 0}};
+    MPI_Exscan(local.data(), prefix.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
       {
         contact_offset = prefix[0];
@@ -275,7 +275,9 @@ namespace StabilizedLagrangian
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, mpi_communicator, locally_relevant);
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
 
+    // initial statuses from the initial configuration: touching points are in contact
     update_pairings();
+    update_statuses();
   }
 
   // ---------------------------------------------------------------------------

@@ -19,11 +19,17 @@ namespace StabilizedLagrangian
       return contact_pressure - r_n * gap;
     }
 
-    /** @brief Contact status χ of seed eq. (5): in contact when λ̂ > 0. */
+    /**
+     * @brief Contact status χ of seed eq. (5): in contact when λ̂ ≥ 0.
+     *
+     * The seed counts λ̂ = 0 as contact, so points that touch with no pressure
+     * yet (a body resting on the obstacle at the first step) start in contact,
+     * which load-controlled scenes need to be well posed.
+     */
     inline bool
     is_in_contact(const double augmented_pressure)
     {
-      return augmented_pressure > 0.;
+      return augmented_pressure >= 0.;
     }
 
     /** @brief Augmented semi-multiplier ĝ = Λ + r_t Δs. */

@@ -152,6 +152,10 @@ namespace StabilizedLagrangian
     void
     update_pairings();
 
+    /** @brief Refresh the ghosted copy of the iterate after current_solution() changed. */
+    void
+    update_ghosts();
+
   private:
     /** One face of Γc on a locally owned cell, and where its points start. */
     struct ContactFace
@@ -231,8 +235,6 @@ namespace StabilizedLagrangian
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
     void
     print_step_line(const StepStatistics &stats, const double elapsed) const;
-    void
-    update_ghosts();
     /** Call f(state, kinematics) at every locally owned contact point. */
     template <typename Function>
     void

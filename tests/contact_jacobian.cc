@@ -1,0 +1,172 @@
+// Contact residual and Jacobian against central finite differences, with the
+// statuses and thresholds frozen as in the innermost Newton loop: points out
+// of contact, in contact and sticking, in contact and slipping; 2D and 3D;
+// Gauss-Lobatto and Gauss contact quadrature.
+
+#include <deal.II/base/mpi.h>
+
+#include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+
+using namespace dealii;
+using namespace StabilizedLagrangian;
+
+namespace
+{
+  int failures = 0;
+
+  enum class State
+  {
+    open,
+    stick,
+    slip,
+    mixed
+  };
+
+  template <int dim>
+  std::string
+  scene(const std::string &quadrature, const double mu)
+  {
+    std::string prm = "set Dimension = " + std::to_string(dim) + "\n" + R"(
+subsection Geometry
+  set Model = block
+  subsection block
+    set Length = 2
+    set Height = 1
+    set Width = 1
+    set Subdivisions = )" + std::string(dim == 2 ? "2, 1" : "2, 1, 1") + R"(
+    set Global refinements = 1
+  end
+end
+subsection Material
+  subsection linear elastic
+    # soft, so that the contact terms dominate the displacement rows
+    set Young's modulus = 1
+  end
+end
+subsection Contact
+  set r_n = 300
+  set r_t = 2
+  set Contact quadrature = )" + quadrature + R"(
+  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = )" + std::to_string(mu) + R"(
+    end
+  end
+end
+subsection Output
+  set Write vtu = false
+end
+)";
+    return prm;
+  }
+
+  template <int dim>
+  void
+  test(const State state, const std::string &quadrature, const double mu)
+  {
+    ParameterHandler prm;
+    Parameters::declare_all<dim>(prm);
+    Parameters::parse(prm, scene<dim>(quadrature, mu), false);
+    ContactProblem<dim> problem(prm, false);
+    problem.setup();
+
+    const auto          multiplier_rows = problem.locally_owned_multiplier_components();
+    std::map<types::global_dof_index, unsigned int> component(multiplier_rows.begin(), multiplier_rows.end());
+    std::mt19937                                    rng(7);
+    std::uniform_real_distribution<double>          unit(-1., 1.);
+
+    // state: small displacements (the step started from 0), pressures around 10,
+    // semi-multipliers small (stick) or large (slip)
+    TrilinosWrappers::MPI::Vector &x = problem.current_solution();
+    TrilinosWrappers::MPI::Vector  direction(x);
+    for (const auto index : x.locally_owned_elements())
+      {
+        const bool is_multiplier = index >= problem.n_displacement_dofs();
+        const unsigned int c = is_multiplier ? component.at(index) : 0;
+        double value = 1e-3 * unit(rng);
+        if (is_multiplier && c == 0)
+          value = 10. + unit(rng);
+        else if (is_multiplier)
+          value = (state == State::slip ? 3. : 0.2) + 0.05 * unit(rng);
+        if (state == State::mixed && is_multiplier && c > 0)
+          value = (index % 2 ? 3. : 0.1) + 0.05 * unit(rng);
+        x(index)         = value;
+        direction(index) = unit(rng) * (is_multiplier ? (c == 0 ? 1. : 0.1) : 1e-3);
+      }
+    x.compress(VectorOperation::insert);
+    direction.compress(VectorOperation::insert);
+    problem.update_ghosts();
+    for (auto &point : problem.contact_points())
+      {
+        point.in_contact         = (state != State::open);
+        point.friction_threshold = 5.;
+      }
+    if (state == State::mixed)
+      for (unsigned int p = 0; p < problem.contact_points().size(); p += 3)
+        problem.contact_points()[p].in_contact = false;
+
+    problem.assemble_newton_system(true);
+    TrilinosWrappers::MPI::Vector jv(x);
+    problem.jacobian().vmult(jv, direction);
+
+    const double                  eps = 1e-6;
+    const TrilinosWrappers::MPI::Vector x0 = x;
+    TrilinosWrappers::MPI::Vector fd(x);
+    x.add(eps, direction);
+    problem.update_ghosts();
+    problem.assemble_newton_system(false);
+    fd = problem.residual();
+    x = x0;
+    x.add(-eps, direction);
+    problem.update_ghosts();
+    problem.assemble_newton_system(false);
+    fd.add(-1., problem.residual());
+    fd /= 2. * eps;
+
+    // compare each block (u, λ_n, Λ) to its own size
+    double error[3] = {0., 0., 0.}, size[3] = {0., 0., 0.};
+    for (const auto index : x.locally_owned_elements())
+      {
+        const unsigned int block =
+          index < problem.n_displacement_dofs() ? 0 : (component.at(index) == 0 ? 1 : 2);
+        error[block] = std::max(error[block], std::abs(jv(index) - fd(index)));
+        size[block]  = std::max(size[block], std::abs(jv(index)));
+      }
+    const char *names[]  = {"open", "stick", "slip", "mixed"};
+    const char *blocks[] = {"u", "lambda_n", "Lambda"};
+    for (unsigned int b = 0; b < (mu > 0. ? 3 : 2); ++b)
+      {
+        const double e = Utilities::MPI::max(error[b], MPI_COMM_WORLD);
+        const double s = Utilities::MPI::max(size[b], MPI_COMM_WORLD);
+        const bool   ok = e <= 1e-6 * s && s > 0.;
+        failures += !ok;
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          std::cout << (ok ? "ok    " : "FAIL  ") << dim << "D " << quadrature << " mu=" << mu << " "
+                    << names[static_cast<int>(state)] << " rows " << blocks[b]
+                    << ": |J v - FD| = " << e << ", |J v| = " << s << std::endl;
+      }
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  for (const std::string quadrature : {"Gauss-Lobatto", "Gauss"})
+    for (const State state : {State::open, State::stick, State::slip, State::mixed})
+      for (const double mu : {0.3, 0.})
+        {
+          test<2>(state, quadrature, mu);
+          test<3>(state, quadrature, mu);
+        }
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}

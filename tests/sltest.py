@@ -1,0 +1,60 @@
+"""Helpers for the scene tests: run the program on a parameter file and read its CSV output."""
+import csv
+import os
+import subprocess
+import sys
+
+MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def run(executable, prm_text, workdir, ranks=1, expect_success=True):
+    """Write prm_text to workdir/input.prm, run the program there, return (exit code, stdout+stderr)."""
+    os.makedirs(workdir, exist_ok=True)
+    prm = os.path.join(workdir, "input.prm")
+    with open(prm, "w") as f:
+        f.write(prm_text)
+    command = [executable, "input.prm"]
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+    result = subprocess.run(command, cwd=workdir, env=MPI_ENV, capture_output=True, text=True,
+                            timeout=1200)
+    output = result.stdout + result.stderr
+    if expect_success and result.returncode != 0:
+        print(output)
+        raise SystemExit(f"FAIL: the program exited with {result.returncode} in {workdir}")
+    return result.returncode, output
+
+
+def scene(name, **replacements):
+    """The text of tests/scenes/<name>.prm with `@KEY@` placeholders replaced."""
+    with open(os.path.join(os.path.dirname(__file__), "scenes", name + ".prm")) as f:
+        text = f.read()
+    for key, value in replacements.items():
+        text = text.replace("@" + key + "@", str(value))
+    return text
+
+
+def read_csv(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def last_profile(outdir):
+    profiles = sorted(p for p in os.listdir(outdir) if p.startswith("profile-"))
+    return read_csv(os.path.join(outdir, profiles[-1]))
+
+
+class Checker:
+    """Collects named checks, prints each, and exits non-zero if any failed."""
+
+    def __init__(self):
+        self.failures = 0
+
+    def __call__(self, ok, what):
+        print(("ok    " if ok else "FAIL  ") + what)
+        self.failures += not ok
+
+    def finish(self):
+        print("FAILED" if self.failures else "PASSED")
+        sys.exit(1 if self.failures else 0)
