@@ -23,7 +23,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::ContactProblem(ParameterHandler &prm, const bool verbose)
     : mpi_communicator(MPI_COMM_WORLD)
     , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    , timer(mpi_communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
     , triangulation(mpi_communicator,
                     typename Triangulation<dim>::MeshSmoothing(
                       Triangulation<dim>::limit_level_difference_at_vertices))

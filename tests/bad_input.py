@@ -1,0 +1,56 @@
+#!/usr/bin/python3
+"""Bad input: each case exits non-zero with one clear message naming the entry
+and what is allowed, and writes no NaN into any output file."""
+import os
+import subprocess
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_elastic.prm")) as f:
+    base = f.read().replace("output-patin-elastic", "output")
+
+cases = {
+    "unknown entry": (base.replace("set Poisson's ratio = 0.3", "set Poissons ratio = 0.3"),
+                      ["Poissons ratio"]),
+    "bad value": (base.replace("set Friction coefficient = 0.1", "set Friction coefficient = abc"),
+                  ["Friction coefficient", "abc"]),
+    "non-positive E": (base.replace("set Young's modulus = 200000", "set Young's modulus = -5"),
+                       ["Young's modulus", "> 0"]),
+    "zero E": (base.replace("set Young's modulus = 200000", "set Young's modulus = 0"),
+               ["Young's modulus", "> 0"]),
+    "negative mu": (base.replace("set Friction coefficient = 0.1", "set Friction coefficient = -0.2"),
+                    ["Friction coefficient", ">= 0"]),
+    "unknown model": (base.replace("set Model = linear elastic", "set Model = rubber"),
+                      ["rubber", "linear elastic"]),
+    "missing boundary id": (base.replace("set Contact boundary ids = 2", "set Contact boundary ids = 7"),
+                            ["Contact boundary ids", "7", "0, 1, 2, 3"]),
+    "wrong variable names": (base.replace("x,y,t", "x,t"), ["Variable names", "x,y,t"]),
+    "bad r_n": (base.replace("set r_n                  = 1e4", "set r_n                  = 0"),
+                ["r_n", "> 0"]),
+}
+for name, (text, expected) in cases.items():
+    out = f"{workdir}/{name.replace(' ', '_')}"
+    code, log = sltest.run(executable, text, out, expect_success=False)
+    first = log.strip().splitlines()[0] if log.strip() else ""
+    check(code != 0, f"{name}: exit code {code}")
+    check(all(e in log for e in expected), f"{name}: message names {expected}: {first[:150]}")
+    check("Segmentation" not in log and "core dumped" not in log and len(log) < 2000,
+          f"{name}: one short message ({len(log)} characters), no crash")
+
+# a missing parameter file
+result = subprocess.run([executable, f"{workdir}/does-not-exist.prm"], capture_output=True, text=True)
+check(result.returncode != 0 and "does-not-exist.prm" in result.stderr,
+      f"missing file: exit code {result.returncode}, message: {result.stderr.strip()[:120]}")
+
+# no NaN anywhere in what was written
+nan_files = []
+for root, _, files in os.walk(workdir):
+    for name in files:
+        if name.endswith((".csv", ".vtu", ".pvtu", ".pvd")):
+            with open(os.path.join(root, name), errors="replace") as f:
+                if "nan" in f.read().lower():
+                    nan_files.append(name)
+check(not nan_files, f"no NaN in any output file {nan_files}")
+check.finish()

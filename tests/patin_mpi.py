@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+"""The elastic patin (prm/patin_elastic.prm, the built-in default scene) runs to
+the end, on one MPI rank and on two, and both give the same statistics: the
+same loop counts and contact point counts in every step, and the same forces
+to solver tolerance. Also runs the 3D block once."""
+import os
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_elastic.prm")) as f:
+    base = f.read().replace("output-patin-elastic", "output")
+
+runs = {}
+for ranks in (1, 2):
+    out = f"{workdir}/np{ranks}"
+    code, log = sltest.run(executable, base, out, ranks=ranks)
+    runs[ranks] = sltest.read_csv(out + "/output/statistics.csv")
+    check(len(runs[ranks]) == 10 and abs(runs[ranks][-1]["time"] - 1.0) < 1e-12,
+          f"{ranks} rank(s): 10 load steps up to t = 1")
+
+counts = ["geometry_iterations", "friction_iterations", "status_iterations", "newton_iterations",
+          "points_in_contact", "points_stick", "points_slip"]
+forces = ["normal_force_N", "tangential_force_N", "contact_force_x_N", "contact_force_y_N"]
+for one, two in zip(runs[1], runs[2]):
+    step = int(one["step"])
+    check(all(one[c] == two[c] for c in counts), f"step {step}: same loop and point counts on 1 and 2 ranks")
+    scale = abs(one["normal_force_N"])
+    worst = max(abs(one[f] - two[f]) for f in forces) / scale
+    check(worst < 1e-9, f"step {step}: same forces on 1 and 2 ranks (max difference {worst:.1e} of F_n)")
+
+last = runs[1][-1]
+check(last["points_slip"] == last["points_in_contact"] > 0,
+      "the patin slides at the end: every contact point slips")
+check(abs(last["tangential_force_N"] - 0.1 * last["normal_force_N"]) < 1e-8 * last["normal_force_N"],
+      "sliding: F_t = mu F_n")
+
+# 3D: a block on a rigid plane, pressed then slid
+text3d = base.replace("set Dimension = 2", "set Dimension = 3")
+text3d = text3d.replace("set Subdivisions       = 2, 1", "set Subdivisions       = 2, 1, 1")
+text3d = text3d.replace("set Global refinements = 4", "set Global refinements = 2")
+text3d = text3d.replace("set Normal = 0, 1", "set Normal = 0, 0, 1").replace("set Point  = 0, 0", "set Point  = 0, 0, 0")
+text3d = text3d.replace("-u0*min(t/0.5, 1)", "0; -u0*min(t/0.5, 1)").replace("x,y,t", "x,y,z,t")
+text3d = text3d.replace("set Components  = x, y", "set Components  = x, y, z")
+out = f"{workdir}/3d"
+sltest.run(executable, text3d, out, ranks=2)
+s3 = sltest.read_csv(out + "/output/statistics.csv")
+check(len(s3) == 10 and s3[-1]["points_slip"] == s3[-1]["points_in_contact"] > 0,
+      "3D block on 2 ranks: 10 steps, slides at the end")
+# In 3D the lateral Poisson expansion spreads the slip directions, so the
+# resultant |F_t| lies just below mu F_n (never above it, up to the friction-loop
+# tolerance 1e-4 on the thresholds).
+ft, fn = s3[-1]["tangential_force_N"], s3[-1]["normal_force_N"]
+check(0.99 * 0.1 * fn < ft <= 0.1 * fn * (1 + 1e-4),
+      f"3D sliding: 0.99 mu F_n < |F_t| = {ft:.3f} <= mu F_n = {0.1 * fn:.3f}")
+check.finish()
