@@ -65,6 +65,36 @@ for (h0, ea0, ep0, el0), (h1, ea1, ep1, el1) in zip(results, results[1:]):
     check(ea1 < ea0, f"half-width error shrinks: {ea0:.2%} (h = {h0:.3f}) -> {ea1:.2%} (h = {h1:.3f})")
     print(f"      (L2 error of the pressure profile {el0:.2%} -> {el1:.2%}; it reaches the "
           "O((a/R)^2) ~ 1% model error of the closed form at the middle mesh)")
+# Two curved bodies: the elastic half cylinder on a rigid cylinder of the same
+# radius (obstacle `ball`): Hertz with R = R1 R2 / (R1 + R2). The normal and the
+# pairing now depend on the deformation, so the geometry loop must iterate.
+text = base.replace("output-hertz-cylinder", "output")
+text = text.replace("  set Model = plane\n", "  set Model = ball\n  subsection ball\n"
+                    "    set Center = 0, -100\n    set Radius = 100\n  end\n")
+text += "\nsubsection Output\n  set Write vtu = false\nend\n"
+out = f"{workdir}/ball"
+sltest.run(executable, text, out)
+stats = sltest.read_csv(out + "/output/statistics.csv")
+P = stats[-1]["normal_force_N"]
+profile = sltest.last_profile(out + "/output")
+xs = [row["x_mm"] for row in profile]
+loaded = [i for i, row in enumerate(profile) if row["contact_pressure_MPa"] > 0]
+left, right = loaded[0], loaded[-1]
+a = 0.25 * ((xs[right] + xs[right + 1]) - (xs[left] + xs[left - 1]))
+h = max(xs[right + 1] - xs[right], xs[left] - xs[left - 1])
+R_eff = R * R / (R + R)
+a_hertz = math.sqrt(4 * P * R_eff / (math.pi * E_star))
+p0 = max(row["contact_pressure_MPa"] for row in profile)
+p0_hertz = 2 * P / (math.pi * a_hertz)
+print(f"cylinder on rigid cylinder: P = {P:.1f}, a = {a:.3f} (Hertz {a_hertz:.3f}), "
+      f"p0 = {p0:.1f} (Hertz {p0_hertz:.1f})")
+check(all(s["geometry_iterations"] >= 2 for s in stats),
+      f"curved obstacle: the geometry loop iterates ({[int(s['geometry_iterations']) for s in stats]})")
+check(abs(a - a_hertz) <= 0.5 * h + 0.02 * a_hertz,
+      f"cylinder on cylinder: |a - a_H| = {abs(a - a_hertz):.3f} mm <= h/2 + 2% a_H")
+check(abs(p0 - p0_hertz) <= 0.02 * p0_hertz,
+      f"cylinder on cylinder: peak pressure error {abs(p0 - p0_hertz) / p0_hertz:.2%} < 2%")
+
 check(results[-1][2] < results[0][2],
       f"peak pressure error shrinks from the coarsest to the finest mesh: "
       f"{results[0][2]:.2%} -> {results[-1][2]:.2%}")
