@@ -46,7 +46,7 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const bool                       root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
       const std::vector<std::string> args(argv + 1, argv + argc);
@@ -71,9 +71,9 @@ main(int argc, char *argv[])
       if (args.size() > 1 || (!args.empty() && args[0].rfind("-", 0) == 0))
         throw InputError(std::string("Unexpected arguments.\n") + usage);
 
-      const bool        is_file = !args.empty();
-      const std::string text    = is_file ? args[0] : std::string(default_scene_prm);
-      const unsigned int dim    = Parameters::read_dimension(text, is_file);
+      const bool         is_file = !args.empty();
+      const std::string  text    = is_file ? args[0] : std::string(default_scene_prm);
+      const unsigned int dim     = Parameters::read_dimension(text, is_file);
       return dim == 2 ? run<2>(text, is_file) : run<3>(text, is_file);
     }
   catch (const InputError &e)

@@ -23,14 +23,10 @@ namespace StabilizedLagrangian
                         Patterns::List(Patterns::Integer(0, 255), 1),
                         "Boundary ids of the slave contact surface Γc, which carries the "
                         "multipliers.");
-      prm.declare_entry("r_n",
-                        "1e4",
-                        Patterns::Double(),
-                        "Normal augmentation parameter r_n > 0 (N/mm^3).");
-      prm.declare_entry("r_t",
-                        "1",
-                        Patterns::Double(),
-                        "Tangential augmentation parameter r_t > 0 (1/mm).");
+      prm.declare_entry(
+          "r_n", "1e4", Patterns::Double(), "Normal augmentation parameter r_n > 0 (N/mm^3).");
+      prm.declare_entry(
+          "r_t", "1", Patterns::Double(), "Tangential augmentation parameter r_t > 0 (1/mm).");
       prm.declare_entry("Finite element pair",
                         "Q1/P1",
                         Patterns::Selection(fe_pairs),
@@ -58,8 +54,8 @@ namespace StabilizedLagrangian
       if (!(r_t > 0.))
         throw InputError("Contact/r_t must be > 0 (1/mm), got " + prm.get("r_t") + ".");
       fe_pair    = prm.get("Finite element pair");
-      quadrature = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss :
-                                                                ContactQuadrature::gauss_lobatto;
+      quadrature = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
+                                                            : ContactQuadrature::gauss_lobatto;
       prm.leave_subsection();
     }
 
@@ -175,8 +171,12 @@ namespace StabilizedLagrangian
     LoadStepping::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Load stepping");
-      prm.declare_entry("End time", "1", Patterns::Double(), "Pseudo-time at the end of the load path, > 0.");
-      prm.declare_entry("Number of load steps", "10", Patterns::Integer(1), "Equal load steps up to the end time.");
+      prm.declare_entry(
+          "End time", "1", Patterns::Double(), "Pseudo-time at the end of the load path, > 0.");
+      prm.declare_entry("Number of load steps",
+                        "10",
+                        Patterns::Integer(1),
+                        "Equal load steps up to the end time.");
       prm.declare_entry("Maximum step cuts",
                         "5",
                         Patterns::Integer(0, 30),
@@ -254,8 +254,8 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Newton");
       newton_max_iterations = prm.get_integer("Maximum iterations");
       newton_tolerance      = prm.get_double("Tolerance");
-      newton_criterion      = prm.get("Residual") == "absolute" ? ResidualCriterion::absolute :
-                                                                  ResidualCriterion::relative;
+      newton_criterion      = prm.get("Residual") == "absolute" ? ResidualCriterion::absolute
+                                                                : ResidualCriterion::relative;
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -285,9 +285,14 @@ namespace StabilizedLagrangian
     Output::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
-      prm.declare_entry("Output directory", "output", Patterns::FileName(Patterns::FileName::output));
-      prm.declare_entry("Write vtu", "true", Patterns::Bool(), "Write .pvd/.vtu/.pvtu per load step.");
-      prm.declare_entry("Write profiles", "true", Patterns::Bool(), "Write a contact-surface profile .csv per load step.");
+      prm.declare_entry(
+          "Output directory", "output", Patterns::FileName(Patterns::FileName::output));
+      prm.declare_entry(
+          "Write vtu", "true", Patterns::Bool(), "Write .pvd/.vtu/.pvtu per load step.");
+      prm.declare_entry("Write profiles",
+                        "true",
+                        Patterns::Bool(),
+                        "Write a contact-surface profile .csv per load step.");
       prm.leave_subsection();
     }
 
@@ -370,7 +375,9 @@ namespace StabilizedLagrangian
 
     template struct BoundaryConditions<2>;
     template struct BoundaryConditions<3>;
-    template void declare_all<2>(ParameterHandler &);
-    template void declare_all<3>(ParameterHandler &);
+    template void
+    declare_all<2>(ParameterHandler &);
+    template void
+    declare_all<3>(ParameterHandler &);
   } // namespace Parameters
 } // namespace StabilizedLagrangian

@@ -39,7 +39,8 @@ subsection Geometry
     set Length = 2
     set Height = 1
     set Width = 1
-    set Subdivisions = )" + std::string(dim == 2 ? "2, 1" : "2, 1, 1") + R"(
+    set Subdivisions = )" +
+                      std::string(dim == 2 ? "2, 1" : "2, 1, 1") + R"(
     set Global refinements = 1
   end
 end
@@ -52,11 +53,13 @@ end
 subsection Contact
   set r_n = 300
   set r_t = 2
-  set Contact quadrature = )" + quadrature + R"(
+  set Contact quadrature = )" +
+                      quadrature + R"(
   subsection Friction law
     set Model = Coulomb
     subsection Coulomb
-      set Friction coefficient = )" + std::to_string(mu) + R"(
+      set Friction coefficient = )" +
+                      std::to_string(mu) + R"(
     end
   end
 end
@@ -77,8 +80,9 @@ end
     ContactProblem<dim> problem(prm, false);
     problem.setup();
 
-    const auto          multiplier_rows = problem.locally_owned_multiplier_components();
-    std::map<types::global_dof_index, unsigned int> component(multiplier_rows.begin(), multiplier_rows.end());
+    const auto multiplier_rows = problem.locally_owned_multiplier_components();
+    std::map<types::global_dof_index, unsigned int> component(multiplier_rows.begin(),
+                                                              multiplier_rows.end());
     std::mt19937                                    rng(7);
     std::uniform_real_distribution<double>          unit(-1., 1.);
 
@@ -88,9 +92,9 @@ end
     TrilinosWrappers::MPI::Vector  direction(x);
     for (const auto index : x.locally_owned_elements())
       {
-        const bool is_multiplier = index >= problem.n_displacement_dofs();
-        const unsigned int c = is_multiplier ? component.at(index) : 0;
-        double value = 1e-3 * unit(rng);
+        const bool         is_multiplier = index >= problem.n_displacement_dofs();
+        const unsigned int c             = is_multiplier ? component.at(index) : 0;
+        double             value         = 1e-3 * unit(rng);
         if (is_multiplier && c == 0)
           value = 10. + unit(rng);
         else if (is_multiplier)
@@ -116,14 +120,14 @@ end
     TrilinosWrappers::MPI::Vector jv(x);
     problem.jacobian().vmult(jv, direction);
 
-    const double                  eps = 1e-6;
-    const TrilinosWrappers::MPI::Vector x0 = x;
-    TrilinosWrappers::MPI::Vector fd(x);
+    const double                        eps = 1e-6;
+    const TrilinosWrappers::MPI::Vector x0  = x;
+    TrilinosWrappers::MPI::Vector       fd(x);
     x.add(eps, direction);
     problem.update_ghosts();
     problem.assemble_newton_system(false);
     fd = problem.residual();
-    x = x0;
+    x  = x0;
     x.add(-eps, direction);
     problem.update_ghosts();
     problem.assemble_newton_system(false);
@@ -135,7 +139,7 @@ end
     for (const auto index : x.locally_owned_elements())
       {
         const unsigned int block =
-          index < problem.n_displacement_dofs() ? 0 : (component.at(index) == 0 ? 1 : 2);
+            index < problem.n_displacement_dofs() ? 0 : (component.at(index) == 0 ? 1 : 2);
         error[block] = std::max(error[block], std::abs(jv(index) - fd(index)));
         size[block]  = std::max(size[block], std::abs(jv(index)));
       }
@@ -143,13 +147,13 @@ end
     const char *blocks[] = {"u", "lambda_n", "Lambda"};
     for (unsigned int b = 0; b < (mu > 0. ? 3 : 2); ++b)
       {
-        const double e = Utilities::MPI::max(error[b], MPI_COMM_WORLD);
-        const double s = Utilities::MPI::max(size[b], MPI_COMM_WORLD);
+        const double e  = Utilities::MPI::max(error[b], MPI_COMM_WORLD);
+        const double s  = Utilities::MPI::max(size[b], MPI_COMM_WORLD);
         const bool   ok = e <= 1e-6 * s && s > 0.;
         failures += !ok;
         if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-          std::cout << (ok ? "ok    " : "FAIL  ") << dim << "D " << quadrature << " mu=" << mu << " "
-                    << names[static_cast<int>(state)] << " rows " << blocks[b]
+          std::cout << (ok ? "ok    " : "FAIL  ") << dim << "D " << quadrature << " mu=" << mu
+                    << " " << names[static_cast<int>(state)] << " rows " << blocks[b]
                     << ": |J v - FD| = " << e << ", |J v| = " << s << std::endl;
       }
   }

@@ -19,6 +19,21 @@ E_star = E / (1 - nu * nu)
 with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
     base = f.read()
 
+
+
+def measure(outdir):
+    """Normal force P, half-width a, contact mesh size h and peak pressure p0 of a run."""
+    P = sltest.read_csv(outdir + "/statistics.csv")[-1]["normal_force_N"]
+    profile = sltest.last_profile(outdir)
+    xs = [row["x_mm"] for row in profile]
+    loaded = [i for i, row in enumerate(profile) if row["contact_pressure_MPa"] > 0]
+    left, right = loaded[0], loaded[-1]
+    a = 0.25 * ((xs[right] + xs[right + 1]) - (xs[left] + xs[left - 1]))
+    h = max(xs[right + 1] - xs[right], xs[left] - xs[left - 1])
+    p0 = max(row["contact_pressure_MPa"] for row in profile)
+    return P, a, h, p0, profile
+
+
 results = []
 for local in (3, 4, 5):
     text = base.replace("set Local refinements       = 4", f"set Local refinements       = {local}")
@@ -26,14 +41,8 @@ for local in (3, 4, 5):
     text += "\nsubsection Output\n  set Write vtu = false\nend\n"
     out = f"{workdir}/local-{local}"
     sltest.run(executable, text, out)
-    P = sltest.read_csv(out + "/output/statistics.csv")[-1]["normal_force_N"]
-    profile = sltest.last_profile(out + "/output")
+    P, a, h, p0, profile = measure(out + "/output")
     xs = [row["x_mm"] for row in profile]
-    loaded = [i for i, row in enumerate(profile) if row["contact_pressure_MPa"] > 0]
-    left, right = loaded[0], loaded[-1]
-    a = 0.25 * ((xs[right] + xs[right + 1]) - (xs[left] + xs[left - 1]))
-    h = max(xs[right + 1] - xs[right], xs[left] - xs[left - 1])
-    p0 = max(row["contact_pressure_MPa"] for row in profile)
     a_hertz = math.sqrt(4 * P * R / (math.pi * E_star))
     p0_hertz = 2 * P / (math.pi * a_hertz)
     error_a, error_p = abs(a - a_hertz) / a_hertz, abs(p0 - p0_hertz) / p0_hertz
@@ -75,16 +84,9 @@ text += "\nsubsection Output\n  set Write vtu = false\nend\n"
 out = f"{workdir}/ball"
 sltest.run(executable, text, out)
 stats = sltest.read_csv(out + "/output/statistics.csv")
-P = stats[-1]["normal_force_N"]
-profile = sltest.last_profile(out + "/output")
-xs = [row["x_mm"] for row in profile]
-loaded = [i for i, row in enumerate(profile) if row["contact_pressure_MPa"] > 0]
-left, right = loaded[0], loaded[-1]
-a = 0.25 * ((xs[right] + xs[right + 1]) - (xs[left] + xs[left - 1]))
-h = max(xs[right + 1] - xs[right], xs[left] - xs[left - 1])
+P, a, h, p0, profile = measure(out + "/output")
 R_eff = R * R / (R + R)
 a_hertz = math.sqrt(4 * P * R_eff / (math.pi * E_star))
-p0 = max(row["contact_pressure_MPa"] for row in profile)
 p0_hertz = 2 * P / (math.pi * a_hertz)
 print(f"cylinder on rigid cylinder: P = {P:.1f}, a = {a:.3f} (Hertz {a_hertz:.3f}), "
       f"p0 = {p0:.1f} (Hertz {p0_hertz:.1f})")

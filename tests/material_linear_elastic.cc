@@ -56,18 +56,22 @@ namespace
 
         // stress = ∂W/∂∇u
         const double dW =
-          (energy(grad_u + eps * direction) - energy(grad_u - eps * direction)) / (2. * eps);
-        const double stress_error = std::abs(dW - scalar_product(response.stress, direction)) /
-                                    std::abs(dW);
-        check(stress_error < 1e-7, std::to_string(dim) + "D stress vs dW (relative error)", stress_error);
+            (energy(grad_u + eps * direction) - energy(grad_u - eps * direction)) / (2. * eps);
+        const double stress_error =
+            std::abs(dW - scalar_product(response.stress, direction)) / std::abs(dW);
+        check(stress_error < 1e-7,
+              std::to_string(dim) + "D stress vs dW (relative error)",
+              stress_error);
 
         // tangent = ∂σ/∂∇u
         const Tensor<2, dim> fd = (evaluate(grad_u + eps * direction).stress -
                                    evaluate(grad_u - eps * direction).stress) /
                                   (2. * eps);
         const Tensor<2, dim> exact = double_contract<2, 0, 3, 1>(response.tangent, direction);
-        const double tangent_error = (fd - exact).norm() / exact.norm();
-        check(tangent_error < 1e-7, std::to_string(dim) + "D tangent vs dσ (relative error)", tangent_error);
+        const double         tangent_error = (fd - exact).norm() / exact.norm();
+        check(tangent_error < 1e-7,
+              std::to_string(dim) + "D tangent vs dσ (relative error)",
+              tangent_error);
       }
   }
 
@@ -85,7 +89,9 @@ namespace
     check(std::abs(response.stress[0][0] - expected_xx) < 1e-9 * expected_xx,
           "plane strain sigma_xx against E/(1-nu^2) e",
           response.stress[0][0]);
-    check(std::abs(response.stress[1][1]) < 1e-9 * expected_xx, "plane strain sigma_yy = 0", response.stress[1][1]);
+    check(std::abs(response.stress[1][1]) < 1e-9 * expected_xx,
+          "plane strain sigma_yy = 0",
+          response.stress[1][1]);
     check(std::abs(response.out_of_plane_stress - nu * expected_xx) < 1e-9 * expected_xx,
           "plane strain sigma_zz = nu sigma_xx",
           response.out_of_plane_stress);

@@ -45,25 +45,22 @@ namespace StabilizedLagrangian
     };
 
     /** @brief A prescribed displacement on some components of a boundary. */
-    template <int dim>
-    struct DirichletCondition
+    template <int dim> struct DirichletCondition
     {
-      types::boundary_id                             boundary_id;
-      ComponentMask                                  components;
+      types::boundary_id                              boundary_id;
+      ComponentMask                                   components;
       std::shared_ptr<Functions::ParsedFunction<dim>> displacement;
     };
 
     /** @brief A prescribed traction (MPa) on a boundary. */
-    template <int dim>
-    struct NeumannCondition
+    template <int dim> struct NeumannCondition
     {
-      types::boundary_id                             boundary_id;
+      types::boundary_id                              boundary_id;
       std::shared_ptr<Functions::ParsedFunction<dim>> traction;
     };
 
     /** @brief `Boundary conditions` subsection: Dirichlet and Neumann slots. */
-    template <int dim>
-    struct BoundaryConditions
+    template <int dim> struct BoundaryConditions
     {
       static constexpr unsigned int n_dirichlet_slots = 3;
       static constexpr unsigned int n_neumann_slots   = 2;
@@ -90,14 +87,16 @@ namespace StabilizedLagrangian
       parse_parameters(ParameterHandler &prm);
     };
 
-    /** @brief Whether the Newton tolerance applies to the residual or to its ratio to the first one. */
+    /** @brief Whether the Newton tolerance applies to the residual or to its ratio to the first
+     * one. */
     enum class ResidualCriterion
     {
       absolute,
       relative
     };
 
-    /** @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops (DESIGN §3). */
+    /** @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops (DESIGN §3).
+     */
     struct NonlinearSolver
     {
       unsigned int      geometry_max_iterations;

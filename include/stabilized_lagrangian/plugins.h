@@ -19,13 +19,11 @@ namespace StabilizedLagrangian
    * parsed parameters. The driver only ever asks the registry for a model
    * by the name the user chose; it never switches on that name.
    */
-  template <typename InterfaceType>
-  class PluginRegistry
+  template <typename InterfaceType> class PluginRegistry
   {
   public:
     using Declare = std::function<void(dealii::ParameterHandler &)>;
-    using Create  = std::function<std::unique_ptr<InterfaceType>(
-      const dealii::ParameterHandler &)>;
+    using Create  = std::function<std::unique_ptr<InterfaceType>(const dealii::ParameterHandler &)>;
 
     /**
      * @brief Add a plug-in; called from a static initialiser in the plug-in's file.
@@ -33,8 +31,8 @@ namespace StabilizedLagrangian
     static bool
     add(const std::string &name,
         const std::string &description,
-        const Declare &    declare,
-        const Create &     create)
+        const Declare     &declare,
+        const Create      &create)
     {
       entries()[name] = Entry{description, declare, create};
       return true;
@@ -69,13 +67,11 @@ namespace StabilizedLagrangian
      */
     static void
     declare_parameters(dealii::ParameterHandler &prm,
-                       const std::string &       default_model,
-                       const std::string &       intro)
+                       const std::string        &default_model,
+                       const std::string        &intro)
     {
-      prm.declare_entry("Model",
-                        default_model,
-                        dealii::Patterns::Selection(pattern()),
-                        documentation(intro));
+      prm.declare_entry(
+          "Model", default_model, dealii::Patterns::Selection(pattern()), documentation(intro));
       for (const auto &entry : entries())
         {
           prm.enter_subsection(entry.first);
@@ -101,8 +97,7 @@ namespace StabilizedLagrangian
     {
       const auto it = entries().find(name);
       AssertThrow(it != entries().end(),
-                  dealii::ExcMessage("Unknown model '" + name +
-                                     "'; allowed: " + pattern()));
+                  dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
       prm.enter_subsection(name);
       std::unique_ptr<InterfaceType> model = it->second.create(prm);
       prm.leave_subsection();
@@ -117,8 +112,7 @@ namespace StabilizedLagrangian
     {
       const auto it = entries().find(name);
       AssertThrow(it != entries().end(),
-                  dealii::ExcMessage("Unknown model '" + name +
-                                     "'; allowed: " + pattern()));
+                  dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
       return it->second.create(dealii::ParameterHandler());
     }
 

@@ -13,7 +13,7 @@ namespace StabilizedLagrangian
     {
     public:
       explicit Coulomb(const double mu)
-        : mu(mu)
+          : mu(mu)
       {
         if (!(mu >= 0.))
           throw InputError("Contact/Friction law/Coulomb/Friction coefficient must be >= 0, got " +
@@ -63,7 +63,7 @@ namespace StabilizedLagrangian
     {
     public:
       explicit Tresca(const double s)
-        : s(s)
+          : s(s)
       {
         if (!(s >= 0.))
           throw InputError("Contact/Friction law/Tresca/Threshold must be >= 0.");
@@ -72,7 +72,8 @@ namespace StabilizedLagrangian
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("Threshold", "10", Patterns::Double(), "Friction threshold s >= 0 (MPa).");
+        prm.declare_entry(
+            "Threshold", "10", Patterns::Double(), "Friction threshold s >= 0 (MPa).");
       }
 
       bool
@@ -122,20 +123,20 @@ namespace StabilizedLagrangian
 
     namespace
     {
-      const bool registered_coulomb = Registry::add(
-        "Coulomb",
-        "Coulomb friction, threshold μ λ_n",
-        &Coulomb::declare_parameters,
-        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
-          return std::make_unique<Coulomb>(prm.get_double("Friction coefficient"));
-        });
-      const bool registered_tresca = Registry::add(
-        "Tresca",
-        "Tresca friction, fixed threshold",
-        &Tresca::declare_parameters,
-        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
-          return std::make_unique<Tresca>(prm.get_double("Threshold"));
-        });
+      const bool registered_coulomb =
+          Registry::add("Coulomb",
+                        "Coulomb friction, threshold μ λ_n",
+                        &Coulomb::declare_parameters,
+                        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
+                          return std::make_unique<Coulomb>(prm.get_double("Friction coefficient"));
+                        });
+      const bool registered_tresca =
+          Registry::add("Tresca",
+                        "Tresca friction, fixed threshold",
+                        &Tresca::declare_parameters,
+                        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
+                          return std::make_unique<Tresca>(prm.get_double("Threshold"));
+                        });
     } // namespace
   }   // namespace FrictionLaws
 } // namespace StabilizedLagrangian

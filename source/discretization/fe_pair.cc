@@ -12,15 +12,15 @@ namespace StabilizedLagrangian
      * @brief Lagrange Q_k displacement with a continuous Lagrange multiplier of
      * degree m on the trace of the displacement mesh (FE_TraceQ).
      */
-    template <int dim>
-    class LagrangeTracePair : public FEPair<dim>
+    template <int dim> class LagrangeTracePair : public FEPair<dim>
     {
     public:
       LagrangeTracePair(const unsigned int displacement_degree,
                         const unsigned int multiplier_degree)
-        : u_degree(displacement_degree)
-        , m_degree(multiplier_degree)
-      {}
+          : u_degree(displacement_degree)
+          , m_degree(multiplier_degree)
+      {
+      }
 
       std::unique_ptr<FiniteElement<dim>>
       displacement_element() const override
@@ -57,13 +57,13 @@ namespace StabilizedLagrangian
       register_pairs()
       {
         return Registry<dim>::add(
-          "Q1/P1",
-          "Q1 displacement, continuous piecewise-linear multipliers on the displacement's "
-          "boundary mesh",
-          [](ParameterHandler &) {},
-          [](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
-            return std::make_unique<LagrangeTracePair<dim>>(1, 1);
-          });
+            "Q1/P1",
+            "Q1 displacement, continuous piecewise-linear multipliers on the displacement's "
+            "boundary mesh",
+            [](ParameterHandler &) {},
+            [](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
+              return std::make_unique<LagrangeTracePair<dim>>(1, 1);
+            });
       }
       const bool registered_2d = register_pairs<2>();
       const bool registered_3d = register_pairs<3>();

@@ -15,28 +15,29 @@ namespace StabilizedLagrangian
      * @brief Rectangular block (the patin of seed Fig. 2): x in [−L/2, L/2],
      * height H above the plane y = 0 (2D) or z = 0 (3D), width W in y (3D).
      */
-    template <int dim>
-    class Block : public Interface<dim>
+    template <int dim> class Block : public Interface<dim>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
         prm.declare_entry("Length", "100", Patterns::Double(), "Extent in x (mm), > 0.");
-        prm.declare_entry("Height", "50", Patterns::Double(), "Extent in the vertical direction (mm), > 0.");
+        prm.declare_entry(
+            "Height", "50", Patterns::Double(), "Extent in the vertical direction (mm), > 0.");
         prm.declare_entry("Width", "50", Patterns::Double(), "Extent in y, 3D only (mm), > 0.");
         prm.declare_entry("Subdivisions",
                           dim == 2 ? "2, 1" : "2, 1, 1",
                           Patterns::List(Patterns::Integer(1), dim, dim),
                           "Cells of the coarse mesh along x, (y,) vertical.");
-        prm.declare_entry("Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry(
+            "Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
       }
 
       explicit Block(const ParameterHandler &prm)
-        : length(prm.get_double("Length"))
-        , height(prm.get_double("Height"))
-        , width(prm.get_double("Width"))
-        , refinements(prm.get_integer("Global refinements"))
+          : length(prm.get_double("Length"))
+          , height(prm.get_double("Height"))
+          , width(prm.get_double("Width"))
+          , refinements(prm.get_integer("Global refinements"))
       {
         for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
           subdivisions.push_back(Utilities::string_to_int(s));
@@ -62,7 +63,7 @@ namespace StabilizedLagrangian
             // colorize numbers y faces 2/3 and z faces 4/5; the convention wants
             // the vertical faces to be 2 (bottom) and 3 (top)
             const std::map<types::boundary_id, types::boundary_id> renumber = {
-              {2, 4}, {3, 5}, {4, 2}, {5, 3}};
+                {2, 4}, {3, 5}, {4, 2}, {5, 3}};
             for (const auto &cell : triangulation.active_cell_iterators())
               for (const auto &face : cell->face_iterators())
                 if (face->at_boundary() && renumber.count(face->boundary_id()))
@@ -84,15 +85,15 @@ namespace StabilizedLagrangian
      * `Contact zone radius` of the origin get id 2, the rest id 0. Cells near
      * the origin are refined `Local refinements` times.
      */
-    template <int dim>
-    class HalfBall : public Interface<dim>
+    template <int dim> class HalfBall : public Interface<dim>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
         prm.declare_entry("Radius", "100", Patterns::Double(), "Radius R (mm), > 0.");
-        prm.declare_entry("Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry(
+            "Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
         prm.declare_entry("Local refinements",
                           "3",
                           Patterns::Integer(0, 12),
@@ -111,11 +112,11 @@ namespace StabilizedLagrangian
       }
 
       explicit HalfBall(const ParameterHandler &prm)
-        : radius(prm.get_double("Radius"))
-        , global_refinements(prm.get_integer("Global refinements"))
-        , local_refinements(prm.get_integer("Local refinements"))
-        , refinement_radius(prm.get_double("Local refinement radius"))
-        , contact_radius(prm.get_double("Contact zone radius"))
+          : radius(prm.get_double("Radius"))
+          , global_refinements(prm.get_integer("Global refinements"))
+          , local_refinements(prm.get_integer("Local refinements"))
+          , refinement_radius(prm.get_double("Local refinement radius"))
+          , contact_radius(prm.get_double("Contact zone radius"))
       {
         if (!(radius > 0.))
           throw InputError("Geometry/half ball/Radius must be > 0.");
@@ -132,14 +133,14 @@ namespace StabilizedLagrangian
         // an orientation-preserving rotation taking the kept half below the centre,
         // then a shift putting the lowest point at the origin
         GridTools::transform(
-          [&](const Point<dim> &p) {
-            Point<dim> q = p;
-            q[0]         = kept_positive_x ? p[dim - 1] : -p[dim - 1];
-            q[dim - 1]   = kept_positive_x ? -p[0] : p[0];
-            q[dim - 1] += radius;
-            return q;
-          },
-          triangulation);
+            [&](const Point<dim> &p) {
+              Point<dim> q = p;
+              q[0]         = kept_positive_x ? p[dim - 1] : -p[dim - 1];
+              q[dim - 1]   = kept_positive_x ? -p[0] : p[0];
+              q[dim - 1] += radius;
+              return q;
+            },
+            triangulation);
         Point<dim> center;
         center[dim - 1] = radius;
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
@@ -201,21 +202,26 @@ namespace StabilizedLagrangian
                            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
                              return std::make_unique<Block<dim>>(prm);
                            });
-        return Registry<dim>::add("half ball",
-                                  "half disc / half ball touching y = 0 (z = 0) at the origin "
-                                  "(Hertz problem)",
-                                  &HalfBall<dim>::declare_parameters,
-                                  [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-                                    return std::make_unique<HalfBall<dim>>(prm);
-                                  });
+        return Registry<dim>::add(
+            "half ball",
+            "half disc / half ball touching y = 0 (z = 0) at the origin "
+            "(Hertz problem)",
+            &HalfBall<dim>::declare_parameters,
+            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
+              return std::make_unique<HalfBall<dim>>(prm);
+            });
       }
       const bool registered_2d = register_geometries<2>();
       const bool registered_3d = register_geometries<3>();
     } // namespace
 
-    template void declare_parameters<2>(ParameterHandler &);
-    template void declare_parameters<3>(ParameterHandler &);
-    template std::unique_ptr<Interface<2>> create<2>(ParameterHandler &);
-    template std::unique_ptr<Interface<3>> create<3>(ParameterHandler &);
+    template void
+    declare_parameters<2>(ParameterHandler &);
+    template void
+    declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Interface<2>>
+    create<2>(ParameterHandler &);
+    template std::unique_ptr<Interface<3>>
+    create<3>(ParameterHandler &);
   } // namespace Geometry
 } // namespace StabilizedLagrangian

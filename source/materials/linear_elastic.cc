@@ -7,27 +7,24 @@ namespace StabilizedLagrangian
   namespace Materials
   {
     template <int dim>
-    LinearElastic<dim>::LinearElastic(const double youngs_modulus,
-                                      const double poissons_ratio)
-      : E(youngs_modulus)
-      , nu(poissons_ratio)
+    LinearElastic<dim>::LinearElastic(const double youngs_modulus, const double poissons_ratio)
+        : E(youngs_modulus)
+        , nu(poissons_ratio)
     {
       if (!(E > 0.))
         throw InputError("Material/linear elastic/Young's modulus must be > 0, got " +
                          std::to_string(E) + ".");
       if (!(nu >= 0. && nu < 0.5))
-        throw InputError(
-          "Material/linear elastic/Poisson's ratio must be in [0, 0.5), got " +
-          std::to_string(nu) + ".");
+        throw InputError("Material/linear elastic/Poisson's ratio must be in [0, 0.5), got " +
+                         std::to_string(nu) + ".");
       lame_lambda    = E * nu / ((1. + nu) * (1. - 2. * nu));
       const double G = E / (2. * (1. + nu));
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           for (unsigned int k = 0; k < dim; ++k)
             for (unsigned int l = 0; l < dim; ++l)
-              elasticity[i][j][k][l] =
-                lame_lambda * (i == j) * (k == l) +
-                G * ((i == k) * (j == l) + (i == l) * (j == k));
+              elasticity[i][j][k][l] = lame_lambda * (i == j) * (k == l) +
+                                       G * ((i == k) * (j == l) + (i == l) * (j == k));
     }
 
     template <int dim>
@@ -38,10 +35,8 @@ namespace StabilizedLagrangian
                         "200000",
                         Patterns::Double(),
                         "Young's modulus E in MPa; must be > 0.");
-      prm.declare_entry("Poisson's ratio",
-                        "0.3",
-                        Patterns::Double(),
-                        "Poisson's ratio; must be in [0, 0.5).");
+      prm.declare_entry(
+          "Poisson's ratio", "0.3", Patterns::Double(), "Poisson's ratio; must be in [0, 0.5).");
     }
 
     template <int dim>
@@ -68,13 +63,13 @@ namespace StabilizedLagrangian
       register_linear_elastic()
       {
         return Registry<dim>::add(
-          "linear elastic",
-          "isotropic linear elasticity, small strain (plane strain in 2D)",
-          &LinearElastic<dim>::declare_parameters,
-          [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-            return std::make_unique<LinearElastic<dim>>(prm.get_double("Young's modulus"),
-                                                        prm.get_double("Poisson's ratio"));
-          });
+            "linear elastic",
+            "isotropic linear elasticity, small strain (plane strain in 2D)",
+            &LinearElastic<dim>::declare_parameters,
+            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
+              return std::make_unique<LinearElastic<dim>>(prm.get_double("Young's modulus"),
+                                                          prm.get_double("Poisson's ratio"));
+            });
       }
       const bool registered_2d = register_linear_elastic<2>();
       const bool registered_3d = register_linear_elastic<3>();

@@ -9,9 +9,8 @@ namespace StabilizedLagrangian
     declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
-      Registry<dim>::declare_parameters(prm,
-                                        "linear elastic",
-                                        "Constitutive model of the deformable body.");
+      Registry<dim>::declare_parameters(
+          prm, "linear elastic", "Constitutive model of the deformable body.");
       prm.leave_subsection();
     }
 
@@ -25,9 +24,13 @@ namespace StabilizedLagrangian
       return model;
     }
 
-    template void declare_parameters<2>(ParameterHandler &);
-    template void declare_parameters<3>(ParameterHandler &);
-    template std::unique_ptr<Interface<2>> create<2>(ParameterHandler &);
-    template std::unique_ptr<Interface<3>> create<3>(ParameterHandler &);
+    template void
+    declare_parameters<2>(ParameterHandler &);
+    template void
+    declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Interface<2>>
+    create<2>(ParameterHandler &);
+    template std::unique_ptr<Interface<3>>
+    create<3>(ParameterHandler &);
   } // namespace Materials
 } // namespace StabilizedLagrangian

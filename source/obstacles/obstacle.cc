@@ -39,7 +39,7 @@ namespace StabilizedLagrangian
       parse_vector(const std::string &entry, const std::string &text, const unsigned int dim)
       {
         const std::vector<double> values =
-          Utilities::string_to_double(Utilities::split_string_list(text));
+            Utilities::string_to_double(Utilities::split_string_list(text));
         if (values.size() != dim)
           throw InputError(entry + " needs " + std::to_string(dim) +
                            " comma-separated numbers, got '" + text + "'.");
@@ -63,15 +63,15 @@ namespace StabilizedLagrangian
     /**
      * @brief Rigid half-space below a plane through a point with outward unit normal.
      */
-    template <int dim>
-    class Plane : public Interface<dim>
+    template <int dim> class Plane : public Interface<dim>
     {
     public:
       Plane(const Point<dim> &point, const Tensor<1, dim> &normal)
-        : point(point)
-        , normal(normal / normal.norm())
-        , tangents(tangent_basis(this->normal))
-      {}
+          : point(point)
+          , normal(normal / normal.norm())
+          , tangents(tangent_basis(this->normal))
+      {
+      }
 
       static void
       declare_parameters(ParameterHandler &prm)
@@ -90,12 +90,12 @@ namespace StabilizedLagrangian
       create(const ParameterHandler &prm)
       {
         const Point<dim> normal =
-          to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
+            to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
         if (normal.norm() == 0.)
           throw InputError("Obstacle/plane/Normal must not be the zero vector.");
         return std::make_unique<Plane<dim>>(
-          to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
-          Tensor<1, dim>(normal));
+            to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
+            Tensor<1, dim>(normal));
       }
 
       Pairing<dim>
@@ -123,13 +123,12 @@ namespace StabilizedLagrangian
     /**
      * @brief Rigid disc (2D, a cylinder in plane strain) or ball (3D); the body is outside.
      */
-    template <int dim>
-    class Ball : public Interface<dim>
+    template <int dim> class Ball : public Interface<dim>
     {
     public:
       Ball(const Point<dim> &center, const double radius)
-        : center(center)
-        , radius(radius)
+          : center(center)
+          , radius(radius)
       {
         if (!(radius > 0.))
           throw InputError("Obstacle/ball/Radius must be > 0.");
@@ -149,15 +148,15 @@ namespace StabilizedLagrangian
       create(const ParameterHandler &prm)
       {
         return std::make_unique<Ball<dim>>(
-          to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
-          prm.get_double("Radius"));
+            to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
+            prm.get_double("Radius"));
       }
 
       Pairing<dim>
       project(const Point<dim> &x) const override
       {
         Pairing<dim>         pairing;
-        const Tensor<1, dim> d = x - center;
+        const Tensor<1, dim> d        = x - center;
         const double         distance = d.norm();
         if (distance > 0.)
           pairing.normal = d / distance;
@@ -217,11 +216,17 @@ namespace StabilizedLagrangian
       const bool registered_3d = register_obstacles<3>();
     } // namespace
 
-    template std::array<Tensor<1, 2>, 1> tangent_basis<2>(const Tensor<1, 2> &);
-    template std::array<Tensor<1, 3>, 2> tangent_basis<3>(const Tensor<1, 3> &);
-    template void declare_parameters<2>(ParameterHandler &);
-    template void declare_parameters<3>(ParameterHandler &);
-    template std::unique_ptr<Interface<2>> create<2>(ParameterHandler &);
-    template std::unique_ptr<Interface<3>> create<3>(ParameterHandler &);
+    template std::array<Tensor<1, 2>, 1>
+    tangent_basis<2>(const Tensor<1, 2> &);
+    template std::array<Tensor<1, 3>, 2>
+    tangent_basis<3>(const Tensor<1, 3> &);
+    template void
+    declare_parameters<2>(ParameterHandler &);
+    template void
+    declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Interface<2>>
+    create<2>(ParameterHandler &);
+    template std::unique_ptr<Interface<3>>
+    create<3>(ParameterHandler &);
   } // namespace Obstacles
 } // namespace StabilizedLagrangian

@@ -26,17 +26,17 @@ namespace StabilizedLagrangian
      * Cauchy stress tensor and von Mises stress from the displacement gradient
      * (plane strain: the out-of-plane stress enters the von Mises stress).
      */
-    template <int dim>
-    class StressPostprocessor : public DataPostprocessor<dim>
+    template <int dim> class StressPostprocessor : public DataPostprocessor<dim>
     {
     public:
       explicit StressPostprocessor(const Materials::Interface<dim> &material)
-        : material(material)
-      {}
+          : material(material)
+      {
+      }
 
       void
       evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
-                            std::vector<Vector<double>> &computed) const override
+                            std::vector<Vector<double>>                &computed) const override
       {
         for (unsigned int p = 0; p < inputs.solution_gradients.size(); ++p)
           {
@@ -44,19 +44,19 @@ namespace StabilizedLagrangian
             for (unsigned int d = 0; d < dim; ++d)
               grad_u[d] = inputs.solution_gradients[p][d];
             const auto response =
-              material.evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
+                material.evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
             // small strain: the stress is the Cauchy stress
             Tensor<2, 3> sigma;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = 0; j < dim; ++j)
                 {
-                  sigma[i][j]                       = response.stress[i][j];
+                  sigma[i][j]              = response.stress[i][j];
                   computed[p](i * dim + j) = response.stress[i][j];
                 }
             if (dim == 2)
               sigma[2][2] = response.out_of_plane_stress;
             const Tensor<2, 3> deviator = sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
-            computed[p](dim * dim) = std::sqrt(1.5 * scalar_product(deviator, deviator));
+            computed[p](dim * dim)      = std::sqrt(1.5 * scalar_product(deviator, deviator));
           }
       }
 
@@ -72,7 +72,7 @@ namespace StabilizedLagrangian
       get_data_component_interpretation() const override
       {
         std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
-          dim * dim, DataComponentInterpretation::component_is_part_of_tensor);
+            dim * dim, DataComponentInterpretation::component_is_part_of_tensor);
         kinds.push_back(DataComponentInterpretation::component_is_scalar);
         return kinds;
       }
@@ -98,9 +98,9 @@ namespace StabilizedLagrangian
 
     // Contact fields at the vertices of Γc, on a Q1 field (zero elsewhere):
     // pressure, tangential traction (dim), gap, slip increment (dim), status.
-    const unsigned int     n_fields = 2 * dim + 3;
-    const FESystem<dim>    fe_fields(FE_Q<dim>(1), n_fields);
-    DoFHandler<dim>        field_dofs(triangulation);
+    const unsigned int  n_fields = 2 * dim + 3;
+    const FESystem<dim> fe_fields(FE_Q<dim>(1), n_fields);
+    DoFHandler<dim>     field_dofs(triangulation);
     field_dofs.distribute_dofs(fe_fields);
     IndexSet field_relevant;
     DoFTools::extract_locally_relevant_dofs(field_dofs, field_relevant);
@@ -108,37 +108,40 @@ namespace StabilizedLagrangian
     sums.reinit(field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator, true);
     TrilinosWrappers::MPI::Vector counts(sums);
 
-    const double              r_n      = contact_parameters.r_n;
-    const double              r_t      = contact_parameters.r_t;
-    const bool                friction = friction_law->has_friction();
-    const QTrapezoid<dim - 1> vertex_quadrature;
-    FaceEvaluator             evaluator(*this, vertex_quadrature);
+    const double                                           r_n      = contact_parameters.r_n;
+    const double                                           r_t      = contact_parameters.r_t;
+    const bool                                             friction = friction_law->has_friction();
+    const QTrapezoid<dim - 1>                              vertex_quadrature;
+    FaceEvaluator                                          evaluator(*this, vertex_quadrature);
     std::map<types::global_dof_index, std::vector<double>> profile;
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
-        const typename DoFHandler<dim>::active_cell_iterator field_cell(&triangulation,
-                                                                        face.cell->level(),
-                                                                        face.cell->index(),
-                                                                        &field_dofs);
+        const typename DoFHandler<dim>::active_cell_iterator field_cell(
+            &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
         for (unsigned int q = 0; q < vertex_quadrature.size(); ++q)
           {
-            const ContactKinematics<dim> k = evaluator.kinematics(q);
+            const ContactKinematics<dim> k      = evaluator.kinematics(q);
             unsigned int                 vertex = 0;
             for (unsigned int v = 1; v < GeometryInfo<dim>::vertices_per_face; ++v)
-              if (field_cell->face(face.face_no)->vertex(v).distance(evaluator.u_values.quadrature_point(q)) <
-                  field_cell->face(face.face_no)->vertex(vertex).distance(evaluator.u_values.quadrature_point(q)))
+              if (field_cell->face(face.face_no)
+                      ->vertex(v)
+                      .distance(evaluator.u_values.quadrature_point(q)) <
+                  field_cell->face(face.face_no)
+                      ->vertex(vertex)
+                      .distance(evaluator.u_values.quadrature_point(q)))
                 vertex = v;
 
-            const auto   pairing = obstacle->project(k.position);
-            const double gap     = pairing.gap(k.position);
-            const double lam_hat = Contact::augmented_pressure(k.contact_pressure, gap, r_n);
-            const bool   contact = Contact::is_in_contact(lam_hat);
-            const double s       = friction_law->threshold(k.contact_pressure);
+            const auto         pairing = obstacle->project(k.position);
+            const double       gap     = pairing.gap(k.position);
+            const double       lam_hat = Contact::augmented_pressure(k.contact_pressure, gap, r_n);
+            const bool         contact = Contact::is_in_contact(lam_hat);
+            const double       s       = friction_law->threshold(k.contact_pressure);
             Tensor<1, dim - 1> slip;
             for (unsigned int a = 0; a < dim - 1; ++a)
               slip[a] = pairing.tangents[a] * k.step_increment;
-            const Tensor<1, dim - 1> g_hat = Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
+            const Tensor<1, dim - 1> g_hat =
+                Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
             double status = contact ? 2. : 0.;
             if (contact && friction && s > 0. && Contact::is_sticking(g_hat))
               status = 1.;
@@ -187,19 +190,21 @@ namespace StabilizedLagrangian
         u_owned.compress(VectorOperation::insert);
         TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
         u = u_owned;
-        TrilinosWrappers::MPI::Vector fields_ghosted(field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
+        TrilinosWrappers::MPI::Vector fields_ghosted(
+            field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
         fields_ghosted = fields;
 
-        DataOut<dim> data_out;
+        DataOut<dim>                                                                data_out;
         const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_kind(
-          dim, DataComponentInterpretation::component_is_part_of_vector);
-        data_out.add_data_vector(dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
+            dim, DataComponentInterpretation::component_is_part_of_vector);
+        data_out.add_data_vector(
+            dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
         const StressPostprocessor<dim> stress(*material);
         data_out.add_data_vector(dof_handler_u, u, stress);
 
         std::vector<std::string> names = {"contact_pressure"};
         std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds = {
-          DataComponentInterpretation::component_is_scalar};
+            DataComponentInterpretation::component_is_scalar};
         const auto add_vector = [&](const std::string &name) {
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -221,7 +226,7 @@ namespace StabilizedLagrangian
         data_out.add_data_vector(subdomain, "subdomain");
         data_out.build_patches(fe_pair->displacement_degree());
         const std::string record = data_out.write_vtu_with_pvtu_record(
-          directory + "/", "solution", step, mpi_communicator, 5, 0);
+            directory + "/", "solution", step, mpi_communicator, 5, 0);
         if (root)
           {
             pvd_records.emplace_back(t, record);
@@ -241,12 +246,12 @@ namespace StabilizedLagrangian
         const auto gathered = Utilities::MPI::gather(mpi_communicator, flat, 0);
         if (root)
           {
-            const unsigned int                row_size = 1 + dim + n_fields;
+            const unsigned int                                     row_size = 1 + dim + n_fields;
             std::map<types::global_dof_index, std::vector<double>> rows;
             for (const auto &part : gathered)
               for (unsigned int r = 0; r + row_size <= part.size(); r += row_size)
                 rows[static_cast<types::global_dof_index>(part[r])] =
-                  std::vector<double>(part.begin() + r + 1, part.begin() + r + row_size);
+                    std::vector<double>(part.begin() + r + 1, part.begin() + r + row_size);
             std::vector<std::vector<double>> sorted;
             for (auto &entry : rows)
               sorted.push_back(entry.second);
@@ -254,15 +259,17 @@ namespace StabilizedLagrangian
             std::ostringstream name;
             name << directory << "/profile-" << std::setw(5) << std::setfill('0') << step << ".csv";
             std::ofstream file(name.str());
-            const char *axes[] = {"x_mm", "y_mm", "z_mm"};
+            const char   *axes[] = {"x_mm", "y_mm", "z_mm"};
             for (unsigned int d = 0; d < dim; ++d)
               file << axes[d] << ',';
             file << "contact_pressure_MPa";
             for (unsigned int d = 0; d < dim; ++d)
-              file << ",tangential_traction_" << "xyz"[d] << "_MPa";
+              file << ",tangential_traction_"
+                   << "xyz"[d] << "_MPa";
             file << ",gap_mm";
             for (unsigned int d = 0; d < dim; ++d)
-              file << ",slip_increment_" << "xyz"[d] << "_mm";
+              file << ",slip_increment_"
+                   << "xyz"[d] << "_mm";
             file << ",status\n" << std::setprecision(15);
             for (const auto &row : sorted)
               {

@@ -33,20 +33,19 @@ namespace StabilizedLagrangian
     cumulative_newton += s.newton_iterations;
     if (!root)
       return;
-    statistics_file << std::setprecision(10) << s.step << ',' << s.time << ',' << s.step_size
-                    << ',' << s.cuts << ',' << s.geometry_iterations << ','
-                    << s.friction_iterations << ',' << s.status_iterations << ','
-                    << s.newton_iterations << ',' << cumulative_newton << ','
-                    << s.final_residual << ',' << s.contact_points << ','
-                    << s.points_in_contact << ',' << s.points_stick << ',' << s.points_slip
-                    << ',' << s.normal_force << ',' << s.tangential_force;
+    statistics_file << std::setprecision(10) << s.step << ',' << s.time << ',' << s.step_size << ','
+                    << s.cuts << ',' << s.geometry_iterations << ',' << s.friction_iterations << ','
+                    << s.status_iterations << ',' << s.newton_iterations << ',' << cumulative_newton
+                    << ',' << s.final_residual << ',' << s.contact_points << ','
+                    << s.points_in_contact << ',' << s.points_stick << ',' << s.points_slip << ','
+                    << s.normal_force << ',' << s.tangential_force;
     for (unsigned int d = 0; d < dimension; ++d)
       statistics_file << ',' << s.contact_force[d];
     statistics_file << ',' << std::setprecision(4) << s.wall_time << '\n';
     statistics_file.flush();
     for (const auto &r : s.inner_loops)
-      iterations_file << s.step << ',' << r.geometry_iteration << ',' << r.friction_iteration
-                      << ',' << r.status_iteration << ',' << r.newton_iterations << ','
+      iterations_file << s.step << ',' << r.geometry_iteration << ',' << r.friction_iteration << ','
+                      << r.status_iteration << ',' << r.newton_iterations << ','
                       << std::setprecision(6) << r.residual << ',' << r.status_changes << '\n';
     iterations_file.flush();
   }

@@ -21,15 +21,15 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   ContactProblem<dim>::ContactProblem(ParameterHandler &prm, const bool verbose)
-    : mpi_communicator(MPI_COMM_WORLD)
-    , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
-    , triangulation(mpi_communicator,
-                    typename Triangulation<dim>::MeshSmoothing(
-                      Triangulation<dim>::limit_level_difference_at_vertices))
-    , dof_handler_u(triangulation)
-    , dof_handler_m(triangulation)
-    , verbose(verbose)
+      : mpi_communicator(MPI_COMM_WORLD)
+      , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
+      , triangulation(mpi_communicator,
+                      typename Triangulation<dim>::MeshSmoothing(
+                          Triangulation<dim>::limit_level_difference_at_vertices))
+      , dof_handler_u(triangulation)
+      , dof_handler_m(triangulation)
+      , verbose(verbose)
   {
     contact_parameters.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
@@ -190,15 +190,15 @@ namespace StabilizedLagrangian
                   on_contact.insert(dofs[i]);
             }
 
-    const IndexSet owned = dof_handler_m.locally_owned_dofs();
+    const IndexSet          owned           = dof_handler_m.locally_owned_dofs();
     types::global_dof_index n_contact_local = 0;
     for (const auto dof : on_contact)
       if (owned.is_element(dof))
         ++n_contact_local;
     const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
 
-    types::global_dof_index contact_offset = 0, other_offset = 0;
-    const std::array<unsigned long long, 2> local = {{n_contact_local, n_other_local}};
+    types::global_dof_index                 contact_offset = 0, other_offset = 0;
+    const std::array<unsigned long long, 2> local  = {{n_contact_local, n_other_local}};
     std::array<unsigned long long, 2>       prefix = {{0, 0}};
     MPI_Exscan(local.data(), prefix.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
@@ -256,7 +256,7 @@ namespace StabilizedLagrangian
       for (auto &state : contact_states)
         state.friction_threshold = friction_law->threshold(0.);
 
-    DynamicSparsityPattern dsp(locally_relevant);
+    DynamicSparsityPattern               dsp(locally_relevant);
     std::vector<types::global_dof_index> u_dofs(fe_u->n_dofs_per_cell());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -272,7 +272,8 @@ namespace StabilizedLagrangian
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
         newton_constraints.add_entries_local_to_global(local_dofs, dsp, false);
       }
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, mpi_communicator, locally_relevant);
+    SparsityTools::distribute_sparsity_pattern(
+        dsp, locally_owned, mpi_communicator, locally_relevant);
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
 
     // initial statuses from the initial configuration: touching points are in contact
@@ -284,28 +285,26 @@ namespace StabilizedLagrangian
   // Evaluation on contact faces
 
   template <int dim>
-  ContactProblem<dim>::FaceEvaluator::FaceEvaluator(const ContactProblem &     problem,
+  ContactProblem<dim>::FaceEvaluator::FaceEvaluator(const ContactProblem      &problem,
                                                     const Quadrature<dim - 1> &quadrature)
-    : u_values(*problem.fe_u,
-               quadrature,
-               update_values | update_quadrature_points | update_JxW_values)
-    , m_values(*problem.fe_m, quadrature, update_values)
-    , u_dofs(problem.fe_u->n_dofs_per_cell())
-    , problem(problem)
-    , u_now(quadrature.size())
-    , u_start(quadrature.size())
-  {}
+      : u_values(
+            *problem.fe_u, quadrature, update_values | update_quadrature_points | update_JxW_values)
+      , m_values(*problem.fe_m, quadrature, update_values)
+      , u_dofs(problem.fe_u->n_dofs_per_cell())
+      , problem(problem)
+      , u_now(quadrature.size())
+      , u_start(quadrature.size())
+  {
+  }
 
   template <int dim>
   void
-  ContactProblem<dim>::FaceEvaluator::reinit(const ContactFace &                  face,
+  ContactProblem<dim>::FaceEvaluator::reinit(const ContactFace                   &face,
                                              const TrilinosWrappers::MPI::Vector &ghosted)
   {
     u_values.reinit(face.cell, face.face_no);
-    const typename DoFHandler<dim>::active_cell_iterator m_cell(&problem.triangulation,
-                                                                face.cell->level(),
-                                                                face.cell->index(),
-                                                                &problem.dof_handler_m);
+    const typename DoFHandler<dim>::active_cell_iterator m_cell(
+        &problem.triangulation, face.cell->level(), face.cell->index(), &problem.dof_handler_m);
     m_values.reinit(m_cell, face.face_no);
     face.cell->get_dof_indices(u_dofs);
 
@@ -432,7 +431,7 @@ namespace StabilizedLagrangian
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
               const Materials::Response<dim> response =
-                material->evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
+                  material->evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
               const double JxW = fe_values.JxW(q);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
@@ -460,7 +459,8 @@ namespace StabilizedLagrangian
                 add_neumann_contribution(cell, f, *bc.traction, cell_rhs);
 
           if (assemble_matrix)
-            newton_constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, system_matrix, system_rhs);
+            newton_constraints.distribute_local_to_global(
+                cell_matrix, cell_rhs, dofs, system_matrix, system_rhs);
           else
             newton_constraints.distribute_local_to_global(cell_rhs, dofs, system_rhs);
         }
@@ -469,15 +469,14 @@ namespace StabilizedLagrangian
   template <int dim>
   void
   ContactProblem<dim>::add_neumann_contribution(
-    const typename DoFHandler<dim>::active_cell_iterator &cell,
-    const unsigned int                                    face_no,
-    Functions::ParsedFunction<dim> &                      traction,
-    Vector<double> &                                      cell_rhs) const
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const unsigned int                                    face_no,
+      Functions::ParsedFunction<dim>                       &traction,
+      Vector<double>                                       &cell_rhs) const
   {
     const QGauss<dim - 1> quadrature(fe_pair->displacement_degree() + 1);
-    FEFaceValues<dim>     fe_face_values(*fe_u,
-                                     quadrature,
-                                     update_values | update_quadrature_points | update_JxW_values);
+    FEFaceValues<dim>     fe_face_values(
+        *fe_u, quadrature, update_values | update_quadrature_points | update_JxW_values);
     fe_face_values.reinit(cell, face_no);
     traction.set_time(time);
     Vector<double> t(dim);
@@ -494,11 +493,11 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::assemble_contact(const bool assemble_matrix)
   {
-    const double   r_n      = contact_parameters.r_n;
-    const double   r_t      = contact_parameters.r_t;
-    const bool     friction = friction_law->has_friction();
-    FaceEvaluator  evaluator(*this, contact_quadrature);
-    const unsigned int n_u_cell = fe_u->n_dofs_per_cell();
+    const double              r_n      = contact_parameters.r_n;
+    const double              r_t      = contact_parameters.r_t;
+    const bool                friction = friction_law->has_friction();
+    FaceEvaluator             evaluator(*this, contact_quadrature);
+    const unsigned int        n_u_cell = fe_u->n_dofs_per_cell();
     std::vector<unsigned int> u_component(n_u_cell);
     for (unsigned int i = 0; i < n_u_cell; ++i)
       u_component[i] = fe_u->system_to_component_index(i).first;
@@ -527,24 +526,24 @@ namespace StabilizedLagrangian
           {
             const ContactPointState<dim> &state = contact_states[face.first_point + q];
             const ContactKinematics<dim>  k     = evaluator.kinematics(q);
-            const auto &                  n_vec = state.pairing.normal;
-            const auto &                  t_vec = state.pairing.tangents;
+            const auto                   &n_vec = state.pairing.normal;
+            const auto                   &t_vec = state.pairing.tangents;
 
-            const double gap      = state.pairing.gap(k.position);
-            const double lambda   = k.contact_pressure;
-            const double lam_hat  = Contact::augmented_pressure(lambda, gap, r_n);
-            const double chi      = state.in_contact ? 1. : 0.;
-            const double s        = state.friction_threshold;
-            const double chi_f    = (friction && state.in_contact && s > 0.) ? 1. : 0.;
+            const double gap     = state.pairing.gap(k.position);
+            const double lambda  = k.contact_pressure;
+            const double lam_hat = Contact::augmented_pressure(lambda, gap, r_n);
+            const double chi     = state.in_contact ? 1. : 0.;
+            const double s       = state.friction_threshold;
+            const double chi_f   = (friction && state.in_contact && s > 0.) ? 1. : 0.;
 
             Tensor<1, dim - 1> slip;
             for (unsigned int a = 0; a < dim - 1; ++a)
               slip[a] = t_vec[a] * k.step_increment;
             const Tensor<1, dim - 1> g_hat =
-              Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
-            const Tensor<1, dim - 1> projected = Contact::project_on_unit_ball(g_hat);
+                Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
+            const Tensor<1, dim - 1> projected   = Contact::project_on_unit_ball(g_hat);
             const Tensor<2, dim - 1> d_projected = Contact::project_on_unit_ball_derivative(g_hat);
-            const double             w = k.JxW;
+            const double             w           = k.JxW;
 
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
@@ -569,10 +568,10 @@ namespace StabilizedLagrangian
                   {
                     const unsigned int alpha = m_component[a] - 1;
                     local_rhs(n_u_cell + a) -=
-                      w *
-                      (chi_f * (s / r_t) * (k.semi_multiplier[alpha] - projected[alpha]) +
-                       (1. - chi_f) * k.semi_multiplier[alpha]) *
-                      psi[a];
+                        w *
+                        (chi_f * (s / r_t) * (k.semi_multiplier[alpha] - projected[alpha]) +
+                         (1. - chi_f) * k.semi_multiplier[alpha]) *
+                        psi[a];
                   }
               }
             if (!assemble_matrix)
@@ -582,8 +581,9 @@ namespace StabilizedLagrangian
               {
                 for (unsigned int j = 0; j < n_u_cell; ++j)
                   local_matrix(i, j) +=
-                    w * (chi * r_n * normal_shape[i] * normal_shape[j] +
-                         chi_f * s * r_t * (tangential_shape[i] * (d_projected * tangential_shape[j])));
+                      w * (chi * r_n * normal_shape[i] * normal_shape[j] +
+                           chi_f * s * r_t *
+                               (tangential_shape[i] * (d_projected * tangential_shape[j])));
                 for (unsigned int b = 0; b < n_m; ++b)
                   {
                     double value;
@@ -607,23 +607,25 @@ namespace StabilizedLagrangian
                         continue;
                       const unsigned int alpha = m_component[a] - 1, beta = m_component[b] - 1;
                       local_matrix(n_u_cell + a, n_u_cell + b) +=
-                        w * chi_f * (s / r_t) * d_projected[alpha][beta] * psi[a] * psi[b];
+                          w * chi_f * (s / r_t) * d_projected[alpha][beta] * psi[a] * psi[b];
                       continue;
                     }
                   if (m_component[a] == 0)
-                    local_matrix(n_u_cell + a, n_u_cell + b) -= w * (1. - chi) / r_n * psi[a] * psi[b];
+                    local_matrix(n_u_cell + a, n_u_cell + b) -=
+                        w * (1. - chi) / r_n * psi[a] * psi[b];
                   else
                     {
                       const unsigned int alpha = m_component[a] - 1;
                       local_matrix(n_u_cell + a, n_u_cell + b) -=
-                        w *
-                        (chi_f * (s / r_t) * (1. - d_projected[alpha][alpha]) + (1. - chi_f)) *
-                        psi[a] * psi[b];
+                          w *
+                          (chi_f * (s / r_t) * (1. - d_projected[alpha][alpha]) + (1. - chi_f)) *
+                          psi[a] * psi[b];
                     }
                 }
           }
         if (assemble_matrix)
-          newton_constraints.distribute_local_to_global(local_matrix, local_rhs, local_dofs, system_matrix, system_rhs);
+          newton_constraints.distribute_local_to_global(
+              local_matrix, local_rhs, local_dofs, system_matrix, system_rhs);
         else
           newton_constraints.distribute_local_to_global(local_rhs, local_dofs, system_rhs);
       }
@@ -642,18 +644,18 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_contact_statistics(StepStatistics &stats)
   {
-    const double r_n      = contact_parameters.r_n;
-    const double r_t      = contact_parameters.r_t;
-    const bool   friction = friction_law->has_friction();
-    unsigned int counts[4] = {0, 0, 0, 0};
-    double       normal_force = 0.;
+    const double   r_n          = contact_parameters.r_n;
+    const double   r_t          = contact_parameters.r_t;
+    const bool     friction     = friction_law->has_friction();
+    unsigned int   counts[4]    = {0, 0, 0, 0};
+    double         normal_force = 0.;
     Tensor<1, dim> total_force, tangential_force;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       ++counts[0];
       if (!state.in_contact)
         return;
       const double lam_hat =
-        Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n);
+          Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n);
       normal_force += k.JxW * lam_hat;
       total_force += k.JxW * lam_hat * state.pairing.normal;
       ++counts[1];
@@ -667,21 +669,21 @@ namespace StabilizedLagrangian
       for (unsigned int a = 0; a < dim - 1; ++a)
         slip[a] = state.pairing.tangents[a] * k.step_increment;
       const Tensor<1, dim - 1> g_hat =
-        Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
+          Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
       ++counts[Contact::is_sticking(g_hat) ? 2 : 3];
       const Tensor<1, dim - 1> projected = Contact::project_on_unit_ball(g_hat);
       for (unsigned int a = 0; a < dim - 1; ++a)
         tangential_force -= k.JxW * s * projected[a] * state.pairing.tangents[a];
     });
     total_force += tangential_force;
-    stats.contact_points    = Utilities::MPI::sum(counts[0], mpi_communicator);
-    stats.points_in_contact = Utilities::MPI::sum(counts[1], mpi_communicator);
-    stats.points_stick      = Utilities::MPI::sum(counts[2], mpi_communicator);
-    stats.points_slip       = Utilities::MPI::sum(counts[3], mpi_communicator);
-    stats.normal_force      = Utilities::MPI::sum(normal_force, mpi_communicator);
+    stats.contact_points            = Utilities::MPI::sum(counts[0], mpi_communicator);
+    stats.points_in_contact         = Utilities::MPI::sum(counts[1], mpi_communicator);
+    stats.points_stick              = Utilities::MPI::sum(counts[2], mpi_communicator);
+    stats.points_slip               = Utilities::MPI::sum(counts[3], mpi_communicator);
+    stats.normal_force              = Utilities::MPI::sum(normal_force, mpi_communicator);
     const Tensor<1, dim> total      = Utilities::MPI::sum(total_force, mpi_communicator);
     const Tensor<1, dim> tangential = Utilities::MPI::sum(tangential_force, mpi_communicator);
-    stats.tangential_force = tangential.norm();
+    stats.tangential_force          = tangential.norm();
     for (unsigned int d = 0; d < dim; ++d)
       stats.contact_force[d] = total[d];
   }

@@ -11,9 +11,9 @@ namespace StabilizedLagrangian
   {
     bool
     solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
-                 TrilinosWrappers::MPI::Vector &       x,
-                 const TrilinosWrappers::MPI::Vector & b,
-                 const std::string &                   solver_name)
+                 TrilinosWrappers::MPI::Vector        &x,
+                 const TrilinosWrappers::MPI::Vector  &b,
+                 const std::string                    &solver_name)
     {
       SolverControl                                  control(1, 0.);
       TrilinosWrappers::SolverDirect::AdditionalData data(false, solver_name);

@@ -32,9 +32,9 @@ namespace StabilizedLagrangian
     statistics.open(output_parameters.directory, dim, root);
 
     geometry_loop_needed = !(obstacle->is_flat() && !material->is_finite_strain());
-    pcout << "stabilized_lagrangian: " << dim << "D, "
-          << triangulation.n_global_active_cells() << " cells, " << n_u
-          << " displacement DoFs + " << n_multipliers << " multiplier DoFs on the contact boundary, "
+    pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
+          << " cells, " << n_u << " displacement DoFs + " << n_multipliers
+          << " multiplier DoFs on the contact boundary, "
           << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)\n";
     if (!geometry_loop_needed)
       pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
@@ -52,9 +52,9 @@ namespace StabilizedLagrangian
     while (time < load_stepping.end_time * (1. - 1e-12))
       {
         step_size = std::min(step_size, load_stepping.end_time - time);
-        const TrilinosWrappers::MPI::Vector     saved_solution = solution;
-        const std::vector<ContactPointState<dim>> saved_states = contact_states;
-        const double                            saved_time     = time;
+        const TrilinosWrappers::MPI::Vector       saved_solution = solution;
+        const std::vector<ContactPointState<dim>> saved_states   = contact_states;
+        const double                              saved_time     = time;
 
         StepStatistics stats;
         stats.step      = step + 1;
@@ -74,9 +74,8 @@ namespace StabilizedLagrangian
               {
                 pcout << "ERROR: load step " << step + 1 << " from t = " << time
                       << " did not converge after " << consecutive_cuts
-                      << " step cuts (Load stepping/Maximum step cuts). The results of the "
-                      << step << " converged steps are in " << output_parameters.directory
-                      << ".\n";
+                      << " step cuts (Load stepping/Maximum step cuts). The results of the " << step
+                      << " converged steps are in " << output_parameters.directory << ".\n";
                 return false;
               }
             ++consecutive_cuts;
@@ -92,7 +91,7 @@ namespace StabilizedLagrangian
           compute_contact_statistics(stats);
         }
         output_results(step, time);
-        step_start = ghosted_solution;
+        step_start      = ghosted_solution;
         stats.wall_time = step_clock.wall_time();
         statistics.write(stats);
         print_step_line(stats, wall_clock.wall_time());
@@ -131,7 +130,7 @@ namespace StabilizedLagrangian
       {
         bc.displacement->set_time(t);
         VectorTools::interpolate_boundary_values(
-          dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
+            dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
       }
     for (const auto &[index, value] : values)
       if (locally_owned.is_element(index))
@@ -150,7 +149,8 @@ namespace StabilizedLagrangian
 
   template <int dim>
   double
-  ContactProblem<dim>::relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const
+  ContactProblem<dim>::relative_displacement_change(
+      const TrilinosWrappers::MPI::Vector &previous) const
   {
     double change = 0., size = 0.;
     for (const auto index : locally_owned_u)
@@ -211,7 +211,7 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::status_loop(StepStatistics &   stats,
+  ContactProblem<dim>::status_loop(StepStatistics    &stats,
                                    const unsigned int k,
                                    const unsigned int j)
   {
@@ -220,7 +220,7 @@ namespace StabilizedLagrangian
         ++stats.status_iterations;
         if (!newton_loop(stats, k, j, i))
           return false;
-        const unsigned int changes = update_statuses();
+        const unsigned int changes              = update_statuses();
         stats.inner_loops.back().status_changes = changes;
         if (changes == 0)
           return true;
@@ -232,7 +232,7 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::newton_loop(StepStatistics &   stats,
+  ContactProblem<dim>::newton_loop(StepStatistics    &stats,
                                    const unsigned int k,
                                    const unsigned int j,
                                    const unsigned int i)
@@ -250,9 +250,10 @@ namespace StabilizedLagrangian
         if (iteration == 0)
           first_residual = residual;
         const double tolerance =
-          solver_parameters.newton_tolerance *
-          (solver_parameters.newton_criterion == Parameters::ResidualCriterion::absolute ? 1. :
-                                                                                          first_residual);
+            solver_parameters.newton_tolerance *
+            (solver_parameters.newton_criterion == Parameters::ResidualCriterion::absolute
+                 ? 1.
+                 : first_residual);
         if (residual <= tolerance)
           {
             stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, 0});
@@ -272,10 +273,8 @@ namespace StabilizedLagrangian
         bool solved;
         {
           TimerOutput::Scope scope(timer, "linear solve");
-          solved = LinearSolvers::solve_direct(system_matrix,
-                                               update,
-                                               system_rhs,
-                                               linear_solver_parameters.direct_solver);
+          solved = LinearSolvers::solve_direct(
+              system_matrix, update, system_rhs, linear_solver_parameters.direct_solver);
         }
         if (!solved)
           {
@@ -297,7 +296,7 @@ namespace StabilizedLagrangian
     const double       r_n     = contact_parameters.r_n;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       const bool in_contact = Contact::is_in_contact(
-        Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n));
+          Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n));
       if (in_contact != state.in_contact)
         {
           ++changes;
@@ -314,9 +313,9 @@ namespace StabilizedLagrangian
     TimerOutput::Scope scope(timer, "contact search");
     double             max_change = 0., max_threshold = 0.;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const double s = friction_law->threshold(k.contact_pressure);
-      max_change     = std::max(max_change, std::abs(s - state.friction_threshold));
-      max_threshold  = std::max(max_threshold, s);
+      const double s           = friction_law->threshold(k.contact_pressure);
+      max_change               = std::max(max_change, std::abs(s - state.friction_threshold));
+      max_threshold            = std::max(max_threshold, s);
       state.friction_threshold = s;
     });
     max_change    = Utilities::MPI::max(max_change, mpi_communicator);

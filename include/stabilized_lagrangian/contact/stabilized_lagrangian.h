@@ -66,12 +66,12 @@ namespace StabilizedLagrangian
     Tensor<2, n>
     project_on_unit_ball_derivative(const Tensor<1, n> &v)
     {
-      const double norm = v.norm();
+      const double norm       = v.norm();
       Tensor<2, n> derivative = unit_symmetric_tensor<n>();
       if (norm > 1.)
         {
           const Tensor<1, n> direction = v / norm;
-          derivative = (derivative - outer_product(direction, direction)) / norm;
+          derivative                   = (derivative - outer_product(direction, direction)) / norm;
         }
       return derivative;
     }

@@ -17,8 +17,7 @@ namespace StabilizedLagrangian
      * The multiplier element is a face element (FE_TraceQ, FE_FaceQ) on the
      * same triangulation; only its degrees of freedom on Γc are kept.
      */
-    template <int dim>
-    class FEPair
+    template <int dim> class FEPair
     {
     public:
       virtual ~FEPair() = default;
@@ -44,7 +43,6 @@ namespace StabilizedLagrangian
     };
 
     /** @brief The registry of FE pairs for dimension @p dim. */
-    template <int dim>
-    using Registry = PluginRegistry<FEPair<dim>>;
+    template <int dim> using Registry = PluginRegistry<FEPair<dim>>;
   } // namespace Discretization
 } // namespace StabilizedLagrangian

@@ -19,8 +19,7 @@ namespace StabilizedLagrangian
      * 2 = bottom (the candidate contact surface), 3 = top (loaded face),
      * 0/1 = the faces at x min / x max, 4/5 = the faces at y min / y max (3D).
      */
-    template <int dim>
-    class Interface
+    template <int dim> class Interface
     {
     public:
       virtual ~Interface() = default;
@@ -31,8 +30,7 @@ namespace StabilizedLagrangian
     };
 
     /** @brief The registry of geometries for dimension @p dim. */
-    template <int dim>
-    using Registry = PluginRegistry<Interface<dim>>;
+    template <int dim> using Registry = PluginRegistry<Interface<dim>>;
 
     /** @brief Declare the `Geometry` subsection with every registered geometry. */
     template <int dim>

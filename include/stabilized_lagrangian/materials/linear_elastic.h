@@ -11,8 +11,7 @@ namespace StabilizedLagrangian
      *
      * σ = λ tr(ε) I + 2G ε with ε = sym(∇u).
      */
-    template <int dim>
-    class LinearElastic : public Interface<dim>
+    template <int dim> class LinearElastic : public Interface<dim>
     {
     public:
       /**
@@ -26,9 +25,9 @@ namespace StabilizedLagrangian
       declare_parameters(ParameterHandler &prm);
 
       Response<dim>
-      evaluate(const Tensor<2, dim> &           grad_u,
+      evaluate(const Tensor<2, dim>          &grad_u,
                const ArrayView<const double> &old_history,
-               const ArrayView<double> &      new_history) const override;
+               const ArrayView<double>       &new_history) const override;
 
       bool
       is_finite_strain() const override

@@ -19,8 +19,7 @@ namespace StabilizedLagrangian
      * tangent A = ∂P/∂F. For small-strain models P is the Cauchy stress and
      * A the elasticity tensor, which is the same weak form.
      */
-    template <int dim>
-    struct Response
+    template <int dim> struct Response
     {
       /** First Piola–Kirchhoff stress (Cauchy stress in small strain). */
       Tensor<2, dim> stress;
@@ -38,8 +37,7 @@ namespace StabilizedLagrangian
      * writes the updated history variables; the driver commits them only
      * when a load step converges.
      */
-    template <int dim>
-    class Interface
+    template <int dim> class Interface
     {
     public:
       virtual ~Interface() = default;
@@ -51,9 +49,9 @@ namespace StabilizedLagrangian
        * @param new_history history variables for this state (size n_history())
        */
       virtual Response<dim>
-      evaluate(const Tensor<2, dim> &      grad_u,
+      evaluate(const Tensor<2, dim>          &grad_u,
                const ArrayView<const double> &old_history,
-               const ArrayView<double> &      new_history) const = 0;
+               const ArrayView<double>       &new_history) const = 0;
 
       /** @brief Number of history variables per quadrature point (0: none). */
       virtual unsigned int
@@ -79,8 +77,7 @@ namespace StabilizedLagrangian
     };
 
     /** @brief The registry of material models for dimension @p dim. */
-    template <int dim>
-    using Registry = PluginRegistry<Interface<dim>>;
+    template <int dim> using Registry = PluginRegistry<Interface<dim>>;
 
     /** @brief Declare the `Material` subsection with every registered model. */
     template <int dim>

@@ -20,12 +20,11 @@ namespace StabilizedLagrangian
      * pointing out of the master, and dim−1 unit tangents completing an
      * orthonormal basis. The gap of a slave position x is g_n = (x − x²)·n.
      */
-    template <int dim>
-    struct Pairing
+    template <int dim> struct Pairing
     {
-      Point<dim>                                   master_point;
-      Tensor<1, dim>                               normal;
-      std::array<Tensor<1, dim>, dim - 1>          tangents;
+      Point<dim>                          master_point;
+      Tensor<1, dim>                      normal;
+      std::array<Tensor<1, dim>, dim - 1> tangents;
 
       /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
       double
@@ -45,8 +44,7 @@ namespace StabilizedLagrangian
     /**
      * @brief Interface of rigid analytic obstacles (the master surface).
      */
-    template <int dim>
-    class Interface
+    template <int dim> class Interface
     {
     public:
       virtual ~Interface() = default;
@@ -64,8 +62,7 @@ namespace StabilizedLagrangian
     };
 
     /** @brief The registry of obstacles for dimension @p dim. */
-    template <int dim>
-    using Registry = PluginRegistry<Interface<dim>>;
+    template <int dim> using Registry = PluginRegistry<Interface<dim>>;
 
     /** @brief Declare the `Obstacle` subsection with every registered obstacle. */
     template <int dim>

@@ -26,10 +26,10 @@ namespace StabilizedLagrangian
    */
   struct StepStatistics
   {
-    unsigned int                 step = 0;
-    double                       time = 0.;
-    double                       step_size = 0.;
-    unsigned int                 cuts = 0;
+    unsigned int                 step                = 0;
+    double                       time                = 0.;
+    double                       step_size           = 0.;
+    unsigned int                 cuts                = 0;
     unsigned int                 geometry_iterations = 0;
     unsigned int                 friction_iterations = 0;
     unsigned int                 status_iterations   = 0;
@@ -69,8 +69,8 @@ namespace StabilizedLagrangian
     }
 
   private:
-    bool          root = false;
-    unsigned int  dimension = 2;
+    bool          root              = false;
+    unsigned int  dimension         = 2;
     unsigned int  cumulative_newton = 0;
     std::ofstream statistics_file;
     std::ofstream iterations_file;

@@ -35,8 +35,7 @@ namespace StabilizedLagrangian
    * (DESIGN §3): pairing and normal (geometry loop), friction threshold
    * (friction loop), contact status (status loop).
    */
-  template <int dim>
-  struct ContactPointState
+  template <int dim> struct ContactPointState
   {
     Obstacles::Pairing<dim> pairing;
     double                  friction_threshold = 0.;
@@ -46,14 +45,13 @@ namespace StabilizedLagrangian
   /**
    * @brief Fields of the current iterate at one contact point.
    */
-  template <int dim>
-  struct ContactKinematics
+  template <int dim> struct ContactKinematics
   {
-    Point<dim>         position;          ///< current position x = X + u
-    Tensor<1, dim>     displacement;      ///< u
-    Tensor<1, dim>     step_increment;    ///< Δu over the load step
+    Point<dim>         position;              ///< current position x = X + u
+    Tensor<1, dim>     displacement;          ///< u
+    Tensor<1, dim>     step_increment;        ///< Δu over the load step
     double             contact_pressure = 0.; ///< λ_n
-    Tensor<1, dim - 1> semi_multiplier;   ///< Λ in the tangent basis
+    Tensor<1, dim - 1> semi_multiplier;       ///< Λ in the tangent basis
     double             JxW = 0.;
   };
 
@@ -67,8 +65,7 @@ namespace StabilizedLagrangian
    * nested fixed points live in nested_loops.cc, assembly and contact
    * evaluation in contact_problem.cc, output in output.cc.
    */
-  template <int dim>
-  class ContactProblem
+  template <int dim> class ContactProblem
   {
   public:
     /**
@@ -184,12 +181,12 @@ namespace StabilizedLagrangian
       /** monolithic indices of the multiplier DoFs with support on the face */
       std::vector<types::global_dof_index> m_dofs;
       /** cell-local indices of those DoFs in the multiplier element */
-      std::vector<unsigned int>            m_local;
+      std::vector<unsigned int> m_local;
 
     private:
-      const ContactProblem &        problem;
-      std::vector<Tensor<1, dim>>    u_now, u_start;
-      std::vector<double>            m_coefficients;
+      const ContactProblem       &problem;
+      std::vector<Tensor<1, dim>> u_now, u_start;
+      std::vector<double>         m_coefficients;
     };
 
     // --- nested_loops.cc: DESIGN §3 ---
@@ -200,9 +197,11 @@ namespace StabilizedLagrangian
     bool
     friction_loop(StepStatistics &stats, const unsigned int geometry_iteration);
     bool
-    status_loop(StepStatistics &stats, const unsigned int geometry_iteration, const unsigned int friction_iteration);
+    status_loop(StepStatistics    &stats,
+                const unsigned int geometry_iteration,
+                const unsigned int friction_iteration);
     bool
-    newton_loop(StepStatistics &stats,
+    newton_loop(StepStatistics    &stats,
                 const unsigned int geometry_iteration,
                 const unsigned int friction_iteration,
                 const unsigned int status_iteration);
@@ -229,8 +228,8 @@ namespace StabilizedLagrangian
     void
     add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
                              const unsigned int                                    face_no,
-                             Functions::ParsedFunction<dim> &                      traction,
-                             Vector<double> &                                      cell_rhs) const;
+                             Functions::ParsedFunction<dim>                       &traction,
+                             Vector<double>                                       &cell_rhs) const;
     double
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
     void
@@ -266,11 +265,11 @@ namespace StabilizedLagrangian
     Parameters::LinearSolver            linear_solver_parameters;
     Parameters::Output                  output_parameters;
 
-    std::unique_ptr<Geometry::Interface<dim>>        geometry;
-    std::unique_ptr<Obstacles::Interface<dim>>       obstacle;
-    std::unique_ptr<Materials::Interface<dim>>       material;
-    std::unique_ptr<FrictionLaws::Interface>         friction_law;
-    std::unique_ptr<Discretization::FEPair<dim>>     fe_pair;
+    std::unique_ptr<Geometry::Interface<dim>>    geometry;
+    std::unique_ptr<Obstacles::Interface<dim>>   obstacle;
+    std::unique_ptr<Materials::Interface<dim>>   material;
+    std::unique_ptr<FrictionLaws::Interface>     friction_law;
+    std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
 
     parallel::distributed::Triangulation<dim> triangulation;
     std::unique_ptr<FiniteElement<dim>>       fe_u, fe_m;
@@ -283,27 +282,26 @@ namespace StabilizedLagrangian
     IndexSet                locally_owned, locally_relevant;
     IndexSet                locally_owned_u, locally_relevant_u;
 
-    AffineConstraints<double> newton_constraints;   ///< hanging nodes + homogeneous Dirichlet
-    AffineConstraints<double> hanging_constraints;  ///< hanging nodes only
+    AffineConstraints<double> newton_constraints;  ///< hanging nodes + homogeneous Dirichlet
+    AffineConstraints<double> hanging_constraints; ///< hanging nodes only
 
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution;          ///< owned
-    TrilinosWrappers::MPI::Vector  ghosted_solution;  ///< relevant, kept in sync with solution
-    TrilinosWrappers::MPI::Vector  step_start;        ///< relevant, solution at the step start
-    TrilinosWrappers::MPI::Vector  residual_scaling;  ///< 1, r_n or r_t per owned row
+    TrilinosWrappers::MPI::Vector  solution;         ///< owned
+    TrilinosWrappers::MPI::Vector  ghosted_solution; ///< relevant, kept in sync with solution
+    TrilinosWrappers::MPI::Vector  step_start;       ///< relevant, solution at the step start
+    TrilinosWrappers::MPI::Vector  residual_scaling; ///< 1, r_n or r_t per owned row
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
 
-    double             time = 0.;
-    bool               verbose;
-    bool               geometry_loop_needed = true;
-    std::string        parameters_used;
+    double                                      time = 0.;
+    bool                                        verbose;
+    bool                                        geometry_loop_needed = true;
+    std::string                                 parameters_used;
     std::vector<std::pair<double, std::string>> pvd_records;
-    StatisticsWriter   statistics;
+    StatisticsWriter                            statistics;
 
-    template <int>
-    friend class ContactOutput;
+    template <int> friend class ContactOutput;
   };
 } // namespace StabilizedLagrangian

@@ -18,8 +18,8 @@ namespace StabilizedLagrangian
      */
     bool
     solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
-                 TrilinosWrappers::MPI::Vector &       x,
-                 const TrilinosWrappers::MPI::Vector & b,
-                 const std::string &                   solver_name);
+                 TrilinosWrappers::MPI::Vector        &x,
+                 const TrilinosWrappers::MPI::Vector  &b,
+                 const std::string                    &solver_name);
   } // namespace LinearSolvers
 } // namespace StabilizedLagrangian
