@@ -30,6 +30,22 @@ for one, two in zip(runs[1], runs[2]):
     worst = max(abs(one[f] - two[f]) for f in forces) / scale
     check(worst < 1e-9, f"step {step}: same forces on 1 and 2 ranks (max difference {worst:.1e} of F_n)")
 
+# the same solution: the contact surface, vertex by vertex, at every step
+fields = ["contact_pressure_MPa", "tangential_traction_x_MPa", "gap_mm", "slip_increment_x_mm"]
+worst = 0.0
+for step in range(1, 11):
+    p1 = sltest.read_csv(f"{workdir}/np1/output/profile-{step:05d}.csv")
+    p2 = sltest.read_csv(f"{workdir}/np2/output/profile-{step:05d}.csv")
+    check(len(p1) == len(p2) and all(a["x_mm"] == b["x_mm"] for a, b in zip(p1, p2)),
+          f"step {step}: the same {len(p1)} contact vertices on 1 and 2 ranks")
+    # tractions relative to the peak pressure, lengths relative to u0 = 0.5 mm
+    pressure = max(r["contact_pressure_MPa"] for r in p1)
+    for f in fields:
+        scale = pressure if f.endswith("MPa") else 0.5
+        worst = max(worst, max(abs(a[f] - b[f]) for a, b in zip(p1, p2)) / scale)
+check(worst < 1e-9, f"the same contact fields on 1 and 2 ranks (max difference {worst:.1e} "
+      "of the peak pressure, or of u0 for gap and slip)")
+
 last = runs[1][-1]
 check(last["points_slip"] == last["points_in_contact"] > 0,
       "the patin slides at the end: every contact point slips")
