@@ -108,9 +108,6 @@ namespace StabilizedLagrangian
     sums.reinit(field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator, true);
     TrilinosWrappers::MPI::Vector counts(sums);
 
-    const double                                           r_n      = contact_parameters.r_n;
-    const double                                           r_t      = contact_parameters.r_t;
-    const bool                                             friction = friction_law->has_friction();
     const QTrapezoid<dim - 1>                              vertex_quadrature;
     FaceEvaluator                                          evaluator(*this, vertex_quadrature);
     std::map<types::global_dof_index, std::vector<double>> profile;
@@ -132,34 +129,27 @@ namespace StabilizedLagrangian
                       .distance(evaluator.u_values.quadrature_point(q)))
                 vertex = v;
 
-            const auto         pairing = obstacle->project(k.position);
-            const double       gap     = pairing.gap(k.position);
-            const double       lam_hat = Contact::augmented_pressure(k.contact_pressure, gap, r_n);
-            const bool         contact = Contact::is_in_contact(lam_hat);
-            const double       s       = friction_law->threshold(k.contact_pressure);
-            Tensor<1, dim - 1> slip;
-            for (unsigned int a = 0; a < dim - 1; ++a)
-              slip[a] = pairing.tangents[a] * k.step_increment;
-            const Tensor<1, dim - 1> g_hat =
-                Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
-            double status = contact ? 2. : 0.;
-            if (contact && friction && s > 0. && Contact::is_sticking(g_hat))
-              status = 1.;
-            Tensor<1, dim> traction, slip_vector;
-            if (contact && friction)
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                traction -= s * Contact::project_on_unit_ball(g_hat)[a] * pairing.tangents[a];
-            for (unsigned int a = 0; a < dim - 1; ++a)
-              slip_vector += slip[a] * pairing.tangents[a];
+            // the state of the converged iterate, evaluated afresh at the vertex
+            ContactPointState<dim> state;
+            state.pairing    = obstacle->project(k.position);
+            const double gap = state.pairing.gap(k.position);
+            state.in_contact = Contact::is_in_contact(
+                Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
+            state.friction_threshold = friction_law->threshold(k.contact_pressure);
+            const auto point         = frozen_response(state, k);
 
             std::vector<double> values;
-            values.push_back(contact ? std::max(lam_hat, 0.) : 0.);
+            values.push_back(point.normal_traction());
+            const Tensor<1, dim> traction =
+                state.pairing.from_tangential_components(point.tangential_traction());
+            const Tensor<1, dim> slip = state.pairing.from_tangential_components(
+                state.pairing.tangential_components(k.step_increment));
             for (unsigned int d = 0; d < dim; ++d)
               values.push_back(traction[d]);
             values.push_back(gap);
             for (unsigned int d = 0; d < dim; ++d)
-              values.push_back(slip_vector[d]);
-            values.push_back(status);
+              values.push_back(slip[d]);
+            values.push_back(static_cast<double>(point.status()));
 
             const auto vertex_face = field_cell->face(face.face_no);
             for (unsigned int c = 0; c < n_fields; ++c)

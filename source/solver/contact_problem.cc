@@ -493,9 +493,6 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::assemble_contact(const bool assemble_matrix)
   {
-    const double              r_n      = contact_parameters.r_n;
-    const double              r_t      = contact_parameters.r_t;
-    const bool                friction = friction_law->has_friction();
     FaceEvaluator             evaluator(*this, contact_quadrature);
     const unsigned int        n_u_cell = fe_u->n_dofs_per_cell();
     std::vector<unsigned int> u_component(n_u_cell);
@@ -526,101 +523,64 @@ namespace StabilizedLagrangian
           {
             const ContactPointState<dim> &state = contact_states[face.first_point + q];
             const ContactKinematics<dim>  k     = evaluator.kinematics(q);
-            const auto                   &n_vec = state.pairing.normal;
-            const auto                   &t_vec = state.pairing.tangents;
-
-            const double gap     = state.pairing.gap(k.position);
-            const double lambda  = k.contact_pressure;
-            const double lam_hat = Contact::augmented_pressure(lambda, gap, r_n);
-            const double chi     = state.in_contact ? 1. : 0.;
-            const double s       = state.friction_threshold;
-            const double chi_f   = (friction && state.in_contact && s > 0.) ? 1. : 0.;
-
-            Tensor<1, dim - 1> slip;
-            for (unsigned int a = 0; a < dim - 1; ++a)
-              slip[a] = t_vec[a] * k.step_increment;
-            const Tensor<1, dim - 1> g_hat =
-                Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
-            const Tensor<1, dim - 1> projected   = Contact::project_on_unit_ball(g_hat);
-            const Tensor<2, dim - 1> d_projected = Contact::project_on_unit_ball_derivative(g_hat);
-            const double             w           = k.JxW;
+            const auto                    point = frozen_response(state, k);
+            const double                  w     = k.JxW;
 
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
-                const double phi = evaluator.u_values.shape_value(i, q);
-                normal_shape[i]  = phi * n_vec[u_component[i]];
-                for (unsigned int a = 0; a < dim - 1; ++a)
-                  tangential_shape[i][a] = phi * t_vec[a][u_component[i]];
+                Tensor<1, dim> phi;
+                phi[u_component[i]] = evaluator.u_values.shape_value(i, q);
+                normal_shape[i]     = phi * state.pairing.normal;
+                tangential_shape[i] = state.pairing.tangential_components(phi);
               }
             for (unsigned int a = 0; a < n_m; ++a)
               psi[a] = evaluator.m_values.shape_value(evaluator.m_local[a], q);
 
-            // residual, DESIGN §2 (the Λ rows with the opposite sign, which makes
-            // the frozen-status Jacobian symmetric)
+            // the slave's tractions do work against δu; DESIGN §2
+            const double             pressure_residual = point.pressure_residual();
+            const Tensor<1, dim - 1> semi_residual     = point.semi_multiplier_residual();
             for (unsigned int i = 0; i < n_u_cell; ++i)
-              local_rhs(i) += w * (-chi * lam_hat * normal_shape[i] +
-                                   chi_f * s * (projected * tangential_shape[i]));
+              local_rhs(i) -= w * (point.normal_traction() * normal_shape[i] +
+                                   point.tangential_traction() * tangential_shape[i]);
             for (unsigned int a = 0; a < n_m; ++a)
-              {
-                if (m_component[a] == 0)
-                  local_rhs(n_u_cell + a) -= w * ((1. - chi) * lambda / r_n + chi * gap) * psi[a];
-                else
-                  {
-                    const unsigned int alpha = m_component[a] - 1;
-                    local_rhs(n_u_cell + a) -=
-                        w *
-                        (chi_f * (s / r_t) * (k.semi_multiplier[alpha] - projected[alpha]) +
-                         (1. - chi_f) * k.semi_multiplier[alpha]) *
-                        psi[a];
-                  }
-              }
+              local_rhs(n_u_cell + a) +=
+                  w * psi[a] *
+                  (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
             if (!assemble_matrix)
               continue;
 
+            const double             normal_stiffness     = point.normal_stiffness();
+            const Tensor<2, dim - 1> tangential_stiffness = point.tangential_stiffness();
+            const double             pressure_coupling    = point.pressure_coupling();
+            const Tensor<2, dim - 1> friction_coupling    = point.friction_coupling();
+            const double             pressure_compliance  = point.pressure_compliance();
+            const Tensor<2, dim - 1> semi_block           = point.semi_multiplier_block();
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
                 for (unsigned int j = 0; j < n_u_cell; ++j)
                   local_matrix(i, j) +=
-                      w * (chi * r_n * normal_shape[i] * normal_shape[j] +
-                           chi_f * s * r_t *
-                               (tangential_shape[i] * (d_projected * tangential_shape[j])));
+                      w * (normal_stiffness * normal_shape[i] * normal_shape[j] +
+                           tangential_shape[i] * (tangential_stiffness * tangential_shape[j]));
                 for (unsigned int b = 0; b < n_m; ++b)
                   {
-                    double value;
-                    if (m_component[b] == 0)
-                      value = -chi * normal_shape[i] * psi[b];
-                    else
-                      {
-                        const unsigned int beta = m_component[b] - 1;
-                        value = chi_f * s * (tangential_shape[i] * d_projected[beta]) * psi[b];
-                      }
-                    local_matrix(i, n_u_cell + b) += w * value;
-                    local_matrix(n_u_cell + b, i) += w * value;
+                    const double value =
+                        w * psi[b] *
+                        (m_component[b] == 0
+                             ? pressure_coupling * normal_shape[i]
+                             : tangential_shape[i] * friction_coupling[m_component[b] - 1]);
+                    local_matrix(i, n_u_cell + b) += value;
+                    local_matrix(n_u_cell + b, i) += value;
                   }
               }
             for (unsigned int a = 0; a < n_m; ++a)
               for (unsigned int b = 0; b < n_m; ++b)
                 {
-                  if (m_component[a] != m_component[b])
-                    {
-                      if (m_component[a] == 0 || m_component[b] == 0)
-                        continue;
-                      const unsigned int alpha = m_component[a] - 1, beta = m_component[b] - 1;
-                      local_matrix(n_u_cell + a, n_u_cell + b) +=
-                          w * chi_f * (s / r_t) * d_projected[alpha][beta] * psi[a] * psi[b];
-                      continue;
-                    }
-                  if (m_component[a] == 0)
-                    local_matrix(n_u_cell + a, n_u_cell + b) -=
-                        w * (1. - chi) / r_n * psi[a] * psi[b];
-                  else
-                    {
-                      const unsigned int alpha = m_component[a] - 1;
-                      local_matrix(n_u_cell + a, n_u_cell + b) -=
-                          w *
-                          (chi_f * (s / r_t) * (1. - d_projected[alpha][alpha]) + (1. - chi_f)) *
-                          psi[a] * psi[b];
-                    }
+                  double block = 0.;
+                  if (m_component[a] == 0 && m_component[b] == 0)
+                    block = pressure_compliance;
+                  else if (m_component[a] > 0 && m_component[b] > 0)
+                    block = semi_block[m_component[a] - 1][m_component[b] - 1];
+                  local_matrix(n_u_cell + a, n_u_cell + b) += w * block * psi[a] * psi[b];
                 }
           }
         if (assemble_matrix)
@@ -629,6 +589,22 @@ namespace StabilizedLagrangian
         else
           newton_constraints.distribute_local_to_global(local_rhs, local_dofs, system_rhs);
       }
+  }
+
+  template <int dim>
+  Contact::PointResponse<dim - 1>
+  ContactProblem<dim>::frozen_response(const ContactPointState<dim> &state,
+                                       const ContactKinematics<dim> &k) const
+  {
+    return Contact::PointResponse<dim - 1>(k.contact_pressure,
+                                           state.pairing.gap(k.position),
+                                           k.semi_multiplier,
+                                           state.pairing.tangential_components(k.step_increment),
+                                           state.in_contact,
+                                           state.friction_threshold,
+                                           friction_law->has_friction(),
+                                           contact_parameters.r_n,
+                                           contact_parameters.r_t);
   }
 
   template <int dim>
@@ -644,36 +620,20 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_contact_statistics(StepStatistics &stats)
   {
-    const double   r_n          = contact_parameters.r_n;
-    const double   r_t          = contact_parameters.r_t;
-    const bool     friction     = friction_law->has_friction();
-    unsigned int   counts[4]    = {0, 0, 0, 0};
+    unsigned int   counts[4]    = {0, 0, 0, 0}; // all, in contact, stick, slip
     double         normal_force = 0.;
     Tensor<1, dim> total_force, tangential_force;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      const auto point = frozen_response(state, k);
       ++counts[0];
-      if (!state.in_contact)
+      if (point.status() == Contact::Status::open)
         return;
-      const double lam_hat =
-          Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n);
-      normal_force += k.JxW * lam_hat;
-      total_force += k.JxW * lam_hat * state.pairing.normal;
       ++counts[1];
-      const double s = state.friction_threshold;
-      if (!(friction && s > 0.))
-        {
-          ++counts[3];
-          return;
-        }
-      Tensor<1, dim - 1> slip;
-      for (unsigned int a = 0; a < dim - 1; ++a)
-        slip[a] = state.pairing.tangents[a] * k.step_increment;
-      const Tensor<1, dim - 1> g_hat =
-          Contact::augmented_semi_multiplier(k.semi_multiplier, slip, r_t);
-      ++counts[Contact::is_sticking(g_hat) ? 2 : 3];
-      const Tensor<1, dim - 1> projected = Contact::project_on_unit_ball(g_hat);
-      for (unsigned int a = 0; a < dim - 1; ++a)
-        tangential_force -= k.JxW * s * projected[a] * state.pairing.tangents[a];
+      ++counts[point.status() == Contact::Status::stick ? 2 : 3];
+      normal_force += k.JxW * point.normal_traction();
+      total_force += k.JxW * point.normal_traction() * state.pairing.normal;
+      tangential_force +=
+          k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
     });
     total_force += tangential_force;
     stats.contact_points            = Utilities::MPI::sum(counts[0], mpi_communicator);

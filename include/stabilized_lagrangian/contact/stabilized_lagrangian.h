@@ -75,5 +75,149 @@ namespace StabilizedLagrangian
         }
       return derivative;
     }
+
+    /** @brief Contact status of a point as written to the output: 0 open, 1 stick, 2 slip. */
+    enum class Status : unsigned int
+    {
+      open  = 0,
+      stick = 1,
+      slip  = 2
+    };
+
+    /**
+     * @brief The stabilized Lagrangian at one contact point for a frozen contact
+     * status χ and friction threshold s (DESIGN §2): the tractions it applies to
+     * the slave, the residuals of the multiplier equations, and the coefficients
+     * of their Jacobian. The assembly only contracts these with shape functions.
+     *
+     * @tparam n number of tangential components, dim − 1
+     */
+    template <int n> class PointResponse
+    {
+    public:
+      /**
+       * @param contact_pressure λ_n at the point
+       * @param gap g_n with the frozen pairing
+       * @param semi_multiplier Λ in the tangent basis
+       * @param slip_increment Δs over the load step in the tangent basis
+       * @param in_contact frozen status χ
+       * @param threshold frozen friction threshold s
+       * @param has_friction whether the law has friction unknowns at all
+       */
+      PointResponse(const double        contact_pressure,
+                    const double        gap,
+                    const Tensor<1, n> &semi_multiplier,
+                    const Tensor<1, n> &slip_increment,
+                    const bool          in_contact,
+                    const double        threshold,
+                    const bool          has_friction,
+                    const double        r_n,
+                    const double        r_t)
+          : chi(in_contact ? 1. : 0.)
+          , chi_f((has_friction && in_contact && threshold > 0.) ? 1. : 0.)
+          , s(threshold)
+          , r_n(r_n)
+          , r_t(r_t)
+          , lambda(contact_pressure)
+          , gap_value(gap)
+          , semi(semi_multiplier)
+          , lambda_hat(augmented_pressure(contact_pressure, gap, r_n))
+          , g_hat(augmented_semi_multiplier(semi_multiplier, slip_increment, r_t))
+          , projected(project_on_unit_ball(g_hat))
+          , d_projected(project_on_unit_ball_derivative(g_hat))
+      {
+      }
+
+      /** @brief Normal pressure on the slave, χ λ̂ (the force along n). */
+      double
+      normal_traction() const
+      {
+        return chi * lambda_hat;
+      }
+
+      /** @brief Tangential traction on the slave, −χ_f s P_B(ĝ), tangent basis. */
+      Tensor<1, n>
+      tangential_traction() const
+      {
+        return -chi_f * s * projected;
+      }
+
+      /** @brief Residual of the λ_n equation per test function: −[(1−χ) λ_n / r_n + χ g_n]. */
+      double
+      pressure_residual() const
+      {
+        return -((1. - chi) * lambda / r_n + chi * gap_value);
+      }
+
+      /**
+       * @brief Residual of the Λ equation per test function,
+       * −[χ_f (s/r_t)(Λ − P_B(ĝ)) + (1−χ_f) Λ] (the sign that makes the Jacobian symmetric).
+       */
+      Tensor<1, n>
+      semi_multiplier_residual() const
+      {
+        return -(chi_f * (s / r_t) * (semi - projected) + (1. - chi_f) * semi);
+      }
+
+      /** @brief ∂(normal force)/∂g_n·(−1): the stiffness χ r_n of the u–u block along n. */
+      double
+      normal_stiffness() const
+      {
+        return chi * r_n;
+      }
+
+      /** @brief The u–u block along the tangents, χ_f s r_t dP_B. */
+      Tensor<2, n>
+      tangential_stiffness() const
+      {
+        return chi_f * s * r_t * d_projected;
+      }
+
+      /** @brief The u–λ_n coupling per unit normal shape, −χ. */
+      double
+      pressure_coupling() const
+      {
+        return -chi;
+      }
+
+      /** @brief The u–Λ coupling per unit tangential shape, χ_f s dP_B. */
+      Tensor<2, n>
+      friction_coupling() const
+      {
+        return chi_f * s * d_projected;
+      }
+
+      /** @brief The λ_n–λ_n block, −(1−χ)/r_n. */
+      double
+      pressure_compliance() const
+      {
+        return -(1. - chi) / r_n;
+      }
+
+      /** @brief The Λ–Λ block, −[χ_f (s/r_t)(I − dP_B) + (1−χ_f) I]. */
+      Tensor<2, n>
+      semi_multiplier_block() const
+      {
+        const Tensor<2, n> identity = unit_symmetric_tensor<n>();
+        return -(chi_f * (s / r_t) * (identity - d_projected) + (1. - chi_f) * identity);
+      }
+
+      /** @brief Open, stick (friction active, |ĝ| ≤ 1) or slip (frictionless contact slips). */
+      Status
+      status() const
+      {
+        if (chi == 0.)
+          return Status::open;
+        return (chi_f > 0. && is_sticking(g_hat)) ? Status::stick : Status::slip;
+      }
+
+    private:
+      const double       chi, chi_f, s, r_n, r_t;
+      const double       lambda, gap_value;
+      const Tensor<1, n> semi;
+      const double       lambda_hat;
+      const Tensor<1, n> g_hat, projected;
+      const Tensor<2, n> d_projected;
+    };
   } // namespace Contact
 } // namespace StabilizedLagrangian

@@ -32,6 +32,26 @@ namespace StabilizedLagrangian
       {
         return (x - master_point) * normal;
       }
+
+      /** @brief Components of a vector in the tangent basis, (t_α · v). */
+      Tensor<1, dim - 1>
+      tangential_components(const Tensor<1, dim> &v) const
+      {
+        Tensor<1, dim - 1> components;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          components[a] = tangents[a] * v;
+        return components;
+      }
+
+      /** @brief The vector Σ_α c_α t_α of tangent-basis components @p c. */
+      Tensor<1, dim>
+      from_tangential_components(const Tensor<1, dim - 1> &c) const
+      {
+        Tensor<1, dim> v;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          v += c[a] * tangents[a];
+        return v;
+      }
     };
 
     /**

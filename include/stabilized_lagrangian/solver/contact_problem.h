@@ -19,6 +19,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/contact/friction_law.h>
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
 #include <stabilized_lagrangian/materials/material.h>
@@ -249,6 +250,9 @@ namespace StabilizedLagrangian
     }
     void
     compute_contact_statistics(StepStatistics &stats);
+    /** The point-wise stabilized Lagrangian with the frozen status and threshold of @p state. */
+    Contact::PointResponse<dim - 1>
+    frozen_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
 
     // --- output.cc ---
     void
