@@ -275,6 +275,8 @@ namespace StabilizedLagrangian
     SparsityTools::distribute_sparsity_pattern(
         dsp, locally_owned, mpi_communicator, locally_relevant);
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
+    direct_solver =
+        std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver);
 
     // initial statuses from the initial configuration: touching points are in contact
     update_pairings();

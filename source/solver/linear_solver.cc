@@ -1,7 +1,8 @@
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/trilinos_solver.h>
-
 #include <stabilized_lagrangian/solver/linear_solver.h>
+
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 
 #include <cmath>
 
@@ -9,21 +10,48 @@ namespace StabilizedLagrangian
 {
   namespace LinearSolvers
   {
-    bool
-    solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
-                 TrilinosWrappers::MPI::Vector        &x,
-                 const TrilinosWrappers::MPI::Vector  &b,
-                 const std::string                    &solver_name)
+    DirectSolver::DirectSolver(const std::string &solver_name)
+        : solver_name(solver_name)
     {
-      SolverControl                                  control(1, 0.);
-      TrilinosWrappers::SolverDirect::AdditionalData data(false, solver_name);
-      TrilinosWrappers::SolverDirect                 solver(control, data);
-      try
+    }
+
+    DirectSolver::~DirectSolver() = default;
+
+    void
+    DirectSolver::reset()
+    {
+      solver.reset();
+      problem.reset();
+      factored_matrix = nullptr;
+    }
+
+    bool
+    DirectSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                        TrilinosWrappers::MPI::Vector        &x,
+                        const TrilinosWrappers::MPI::Vector  &b)
+    {
+      // Amesos takes non-const pointers but modifies neither the matrix nor b
+      auto &A   = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+      auto &rhs = const_cast<Epetra_MultiVector &>(
+          static_cast<const Epetra_MultiVector &>(b.trilinos_vector()));
+      if (factored_matrix != &matrix)
         {
-          solver.solve(matrix, x, b);
+          reset();
+          problem = std::make_unique<Epetra_LinearProblem>(&A, &x.trilinos_vector(), &rhs);
+          Amesos factory;
+          solver.reset(factory.Create(solver_name.c_str(), *problem));
+          if (!solver || solver->SymbolicFactorization() != 0)
+            {
+              reset();
+              return false;
+            }
+          factored_matrix = &matrix;
         }
-      catch (const std::exception &)
+      problem->SetLHS(&x.trilinos_vector());
+      problem->SetRHS(&rhs);
+      if (solver->NumericFactorization() != 0 || solver->Solve() != 0)
         {
+          reset();
           return false;
         }
       return std::isfinite(x.linfty_norm());

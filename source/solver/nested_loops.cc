@@ -35,7 +35,8 @@ namespace StabilizedLagrangian
     pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
           << " cells, " << n_u << " displacement DoFs + " << n_multipliers
           << " multiplier DoFs on the contact boundary, "
-          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)\n";
+          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s), "
+          << system_matrix.n_nonzero_elements() << " matrix entries\n";
     if (!geometry_loop_needed)
       pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
     if (!friction_law->has_friction())
@@ -273,8 +274,7 @@ namespace StabilizedLagrangian
         bool solved;
         {
           TimerOutput::Scope scope(timer, "linear solve");
-          solved = LinearSolvers::solve_direct(
-              system_matrix, update, system_rhs, linear_solver_parameters.direct_solver);
+          solved = direct_solver->solve(system_matrix, update, system_rhs);
         }
         if (!solved)
           {

@@ -26,6 +26,7 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/linear_solver.h>
 
 namespace StabilizedLagrangian
 {
@@ -289,12 +290,13 @@ namespace StabilizedLagrangian
     AffineConstraints<double> newton_constraints;  ///< hanging nodes + homogeneous Dirichlet
     AffineConstraints<double> hanging_constraints; ///< hanging nodes only
 
-    TrilinosWrappers::SparseMatrix system_matrix;
-    TrilinosWrappers::MPI::Vector  system_rhs;
-    TrilinosWrappers::MPI::Vector  solution;         ///< owned
-    TrilinosWrappers::MPI::Vector  ghosted_solution; ///< relevant, kept in sync with solution
-    TrilinosWrappers::MPI::Vector  step_start;       ///< relevant, solution at the step start
-    TrilinosWrappers::MPI::Vector  residual_scaling; ///< 1, r_n or r_t per owned row
+    TrilinosWrappers::SparseMatrix               system_matrix;
+    std::unique_ptr<LinearSolvers::DirectSolver> direct_solver;
+    TrilinosWrappers::MPI::Vector                system_rhs;
+    TrilinosWrappers::MPI::Vector                solution; ///< owned
+    TrilinosWrappers::MPI::Vector ghosted_solution;        ///< relevant, kept in sync with solution
+    TrilinosWrappers::MPI::Vector step_start;              ///< relevant, solution at the step start
+    TrilinosWrappers::MPI::Vector residual_scaling;        ///< 1, r_n or r_t per owned row
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;

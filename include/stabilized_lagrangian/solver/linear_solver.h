@@ -3,7 +3,11 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <memory>
 #include <string>
+
+class Amesos_BaseSolver;
+class Epetra_LinearProblem;
 
 namespace StabilizedLagrangian
 {
@@ -12,14 +16,37 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
-     * @brief Solve J x = b with a Trilinos Amesos sparse direct solver.
-     * @param solver_name Amesos solver: Amesos_Klu, Amesos_Mumps or Amesos_Superludist
-     * @return false if the factorisation failed (a singular system)
+     * @brief Trilinos Amesos sparse direct solver for the Newton systems.
+     *
+     * The sparsity pattern of the Newton matrix is fixed for a whole run, so
+     * the symbolic factorisation (ordering, elimination tree) is computed once
+     * and only the numeric factorisation is redone at each Newton iteration.
      */
-    bool
-    solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
-                 TrilinosWrappers::MPI::Vector        &x,
-                 const TrilinosWrappers::MPI::Vector  &b,
-                 const std::string                    &solver_name);
+    class DirectSolver
+    {
+    public:
+      /** @param solver_name Amesos solver: Amesos_Klu, Amesos_Mumps or Amesos_Superludist */
+      explicit DirectSolver(const std::string &solver_name);
+      ~DirectSolver();
+
+      /**
+       * @brief Solve J x = b.
+       * @return false if the factorisation failed (a singular system) or x is not finite
+       */
+      bool
+      solve(const TrilinosWrappers::SparseMatrix &matrix,
+            TrilinosWrappers::MPI::Vector        &x,
+            const TrilinosWrappers::MPI::Vector  &b);
+
+      /** @brief Forget the symbolic factorisation (after the sparsity pattern changed). */
+      void
+      reset();
+
+    private:
+      const std::string                     solver_name;
+      std::unique_ptr<Epetra_LinearProblem> problem;
+      std::unique_ptr<Amesos_BaseSolver>    solver;
+      const void                           *factored_matrix = nullptr;
+    };
   } // namespace LinearSolvers
 } // namespace StabilizedLagrangian
