@@ -241,7 +241,9 @@ namespace StabilizedLagrangian
     double first_residual = 0.;
     for (unsigned int iteration = 0;; ++iteration)
       {
-        assemble_newton_system(true);
+        // after an update the residual alone often shows convergence: the
+        // Jacobian is assembled only when another solve follows
+        assemble_newton_system(iteration == 0);
         const double residual = residual_norm();
         if (!std::isfinite(residual))
           {
@@ -269,6 +271,8 @@ namespace StabilizedLagrangian
             return false;
           }
 
+        if (iteration > 0)
+          assemble_newton_system(true);
         TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
         system_rhs *= -1.;
         bool solved;
