@@ -46,6 +46,11 @@ for step in range(1, 11):
 check(worst < 1e-9, f"the same contact fields on 1 and 2 ranks (max difference {worst:.1e} "
       "of the peak pressure, or of u0 for gap and slip)")
 
+summary = sltest.read_csv(f"{workdir}/np2/output/run_summary.csv")[0]
+check(summary["mpi_ranks"] == 2 and summary["load_steps"] == 10
+      and summary["newton_iterations"] == sum(r["newton_iterations"] for r in runs[2]),
+      "run_summary.csv: 2 ranks, 10 steps, Newton total = sum over statistics.csv")
+
 last = runs[1][-1]
 check(last["points_slip"] == last["points_in_contact"] > 0,
       "the patin slides at the end: every contact point slips")

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 
 namespace StabilizedLagrangian
 {
@@ -104,7 +105,36 @@ namespace StabilizedLagrangian
           << static_cast<double>(statistics.cumulative_newton_iterations()) / step << "\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
+    write_run_summary(step, wall_clock.wall_time());
     return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_run_summary(const unsigned int n_steps, const double wall_time) const
+  {
+    // the slowest rank's time per phase
+    const std::map<std::string, double> times =
+        timer.get_summary_data(TimerOutput::total_wall_time);
+    std::map<std::string, double> slowest;
+    for (const auto &[section, seconds] : times)
+      slowest[section] = Utilities::MPI::max(seconds, mpi_communicator);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ofstream file(output_parameters.directory + "/run_summary.csv");
+    file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,load_steps,"
+            "newton_iterations,mean_newton_iterations_per_step,wall_time_s";
+    for (const auto &entry : slowest)
+      file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
+    file << '\n'
+         << dim << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
+         << n_multipliers << ',' << Utilities::MPI::n_mpi_processes(mpi_communicator) << ','
+         << n_steps << ',' << statistics.cumulative_newton_iterations() << ','
+         << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
+         << wall_time;
+    for (const auto &entry : slowest)
+      file << ',' << entry.second;
+    file << '\n';
   }
 
   template <int dim>

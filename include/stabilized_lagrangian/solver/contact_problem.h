@@ -236,6 +236,8 @@ namespace StabilizedLagrangian
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
     void
     print_step_line(const StepStatistics &stats, const double elapsed) const;
+    void
+    write_run_summary(const unsigned int n_steps, const double wall_time) const;
     /** Call f(state, kinematics) at every locally owned contact point. */
     template <typename Function>
     void
