@@ -271,6 +271,9 @@ namespace StabilizedLagrangian
       }
   }
 
-  template class ContactProblem<2>;
-  template class ContactProblem<3>;
+  // the class itself is instantiated once, in contact_problem.cc
+  template void
+  ContactProblem<2>::output_results(unsigned int, double);
+  template void
+  ContactProblem<3>::output_results(unsigned int, double);
 } // namespace StabilizedLagrangian

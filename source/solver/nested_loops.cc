@@ -359,6 +359,25 @@ namespace StabilizedLagrangian
     return max_change / max_threshold;
   }
 
-  template class ContactProblem<2>;
-  template class ContactProblem<3>;
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                     \
+  template bool   ContactProblem<dim>::run();                                                   \
+  template void   ContactProblem<dim>::write_run_summary(unsigned int, double) const;           \
+  template void   ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;   \
+  template void   ContactProblem<dim>::apply_dirichlet_values(double);                          \
+  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                       \
+  template double ContactProblem<dim>::relative_displacement_change(                            \
+      const TrilinosWrappers::MPI::Vector &) const;                                             \
+  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                           \
+  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);             \
+  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
+  template bool ContactProblem<dim>::newton_loop(                                               \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);                              \
+  template unsigned int ContactProblem<dim>::update_statuses();                                 \
+  template double       ContactProblem<dim>::update_friction_thresholds();
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
 } // namespace StabilizedLagrangian
