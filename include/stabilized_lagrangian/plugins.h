@@ -81,6 +81,32 @@ namespace StabilizedLagrangian
     }
 
     /**
+     * @brief declare_parameters() inside the subsection @p subsection.
+     */
+    static void
+    declare_parameters_in(dealii::ParameterHandler &prm,
+                          const std::string        &subsection,
+                          const std::string        &default_model,
+                          const std::string        &intro)
+    {
+      prm.enter_subsection(subsection);
+      declare_parameters(prm, default_model, intro);
+      prm.leave_subsection();
+    }
+
+    /**
+     * @brief Build the plug-in chosen by the `Model` entry of the subsection @p subsection.
+     */
+    static std::unique_ptr<InterfaceType>
+    create_from(dealii::ParameterHandler &prm, const std::string &subsection)
+    {
+      prm.enter_subsection(subsection);
+      std::unique_ptr<InterfaceType> model = create(prm);
+      prm.leave_subsection();
+      return model;
+    }
+
+    /**
      * @brief Build the plug-in chosen by the `Model` entry of the current subsection.
      */
     static std::unique_ptr<InterfaceType>

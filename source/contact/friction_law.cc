@@ -104,23 +104,6 @@ namespace StabilizedLagrangian
       const double s;
     };
 
-    void
-    declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Friction law");
-      Registry::declare_parameters(prm, "Coulomb", "Friction law on the contact boundary.");
-      prm.leave_subsection();
-    }
-
-    std::unique_ptr<Interface>
-    create(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Friction law");
-      auto law = Registry::create(prm);
-      prm.leave_subsection();
-      return law;
-    }
-
     namespace
     {
       const bool registered_coulomb =

@@ -171,25 +171,6 @@ namespace StabilizedLagrangian
       const double       refinement_radius, contact_radius;
     };
 
-    template <int dim>
-    void
-    declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Geometry");
-      Registry<dim>::declare_parameters(prm, "block", "Mesh of the deformable body.");
-      prm.leave_subsection();
-    }
-
-    template <int dim>
-    std::unique_ptr<Interface<dim>>
-    create(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Geometry");
-      auto geometry = Registry<dim>::create(prm);
-      prm.leave_subsection();
-      return geometry;
-    }
-
     namespace
     {
       template <int dim>
@@ -215,13 +196,5 @@ namespace StabilizedLagrangian
       const bool registered_3d = register_geometries<3>();
     } // namespace
 
-    template void
-    declare_parameters<2>(ParameterHandler &);
-    template void
-    declare_parameters<3>(ParameterHandler &);
-    template std::unique_ptr<Interface<2>>
-    create<2>(ParameterHandler &);
-    template std::unique_ptr<Interface<3>>
-    create<3>(ParameterHandler &);
   } // namespace Geometry
 } // namespace StabilizedLagrangian

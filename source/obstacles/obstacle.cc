@@ -178,25 +178,6 @@ namespace StabilizedLagrangian
       const double     radius;
     };
 
-    template <int dim>
-    void
-    declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Obstacle");
-      Registry<dim>::declare_parameters(prm, "plane", "Rigid analytic obstacle (the master).");
-      prm.leave_subsection();
-    }
-
-    template <int dim>
-    std::unique_ptr<Interface<dim>>
-    create(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Obstacle");
-      auto obstacle = Registry<dim>::create(prm);
-      prm.leave_subsection();
-      return obstacle;
-    }
-
     namespace
     {
       template <int dim>
@@ -220,13 +201,5 @@ namespace StabilizedLagrangian
     tangent_basis<2>(const Tensor<1, 2> &);
     template std::array<Tensor<1, 3>, 2>
     tangent_basis<3>(const Tensor<1, 3> &);
-    template void
-    declare_parameters<2>(ParameterHandler &);
-    template void
-    declare_parameters<3>(ParameterHandler &);
-    template std::unique_ptr<Interface<2>>
-    create<2>(ParameterHandler &);
-    template std::unique_ptr<Interface<3>>
-    create<3>(ParameterHandler &);
   } // namespace Obstacles
 } // namespace StabilizedLagrangian

@@ -41,11 +41,18 @@ namespace StabilizedLagrangian
     using Registry = PluginRegistry<Interface>;
 
     /** @brief Declare the `Friction law` subsection. */
-    void
-    declare_parameters(ParameterHandler &prm);
+    inline void
+    declare_parameters(ParameterHandler &prm)
+    {
+      Registry::declare_parameters_in(
+          prm, "Friction law", "Coulomb", "Friction law on the contact boundary.");
+    }
 
     /** @brief Build the friction law chosen in the `Friction law` subsection. */
-    std::unique_ptr<Interface>
-    create(ParameterHandler &prm);
+    inline std::unique_ptr<Interface>
+    create(ParameterHandler &prm)
+    {
+      return Registry::create_from(prm, "Friction law");
+    }
   } // namespace FrictionLaws
 } // namespace StabilizedLagrangian

@@ -35,11 +35,18 @@ namespace StabilizedLagrangian
     /** @brief Declare the `Geometry` subsection with every registered geometry. */
     template <int dim>
     void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm)
+    {
+      Registry<dim>::declare_parameters_in(
+          prm, "Geometry", "block", "Mesh of the deformable body.");
+    }
 
     /** @brief Build the geometry chosen in the `Geometry` subsection. */
     template <int dim>
     std::unique_ptr<Interface<dim>>
-    create(ParameterHandler &prm);
+    create(ParameterHandler &prm)
+    {
+      return Registry<dim>::create_from(prm, "Geometry");
+    }
   } // namespace Geometry
 } // namespace StabilizedLagrangian

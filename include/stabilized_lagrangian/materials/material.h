@@ -82,11 +82,18 @@ namespace StabilizedLagrangian
     /** @brief Declare the `Material` subsection with every registered model. */
     template <int dim>
     void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm)
+    {
+      Registry<dim>::declare_parameters_in(
+          prm, "Material", "linear elastic", "Constitutive model of the deformable body.");
+    }
 
     /** @brief Build the model chosen in the `Material` subsection. */
     template <int dim>
     std::unique_ptr<Interface<dim>>
-    create(ParameterHandler &prm);
+    create(ParameterHandler &prm)
+    {
+      return Registry<dim>::create_from(prm, "Material");
+    }
   } // namespace Materials
 } // namespace StabilizedLagrangian

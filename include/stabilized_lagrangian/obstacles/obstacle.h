@@ -87,11 +87,18 @@ namespace StabilizedLagrangian
     /** @brief Declare the `Obstacle` subsection with every registered obstacle. */
     template <int dim>
     void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm)
+    {
+      Registry<dim>::declare_parameters_in(
+          prm, "Obstacle", "plane", "Rigid analytic obstacle (the master).");
+    }
 
     /** @brief Build the obstacle chosen in the `Obstacle` subsection. */
     template <int dim>
     std::unique_ptr<Interface<dim>>
-    create(ParameterHandler &prm);
+    create(ParameterHandler &prm)
+    {
+      return Registry<dim>::create_from(prm, "Obstacle");
+    }
   } // namespace Obstacles
 } // namespace StabilizedLagrangian
