@@ -378,16 +378,6 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::set_step_start_solution(const TrilinosWrappers::MPI::Vector &start)
-  {
-    step_start = start;
-  }
-
-  // ---------------------------------------------------------------------------
-  // Assembly of the Newton system, DESIGN §2 with χ, s and the pairing frozen
-
-  template <int dim>
-  void
   ContactProblem<dim>::assemble_newton_system(const bool assemble_matrix)
   {
     TimerOutput::Scope scope(timer, "assembly");
@@ -407,6 +397,9 @@ namespace StabilizedLagrangian
   {
     const FiniteElement<dim> &fe = *fe_u;
     FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
+    FEFaceValues<dim>         neumann_values(fe,
+                                     QGauss<dim - 1>(fe_pair->displacement_degree() + 1),
+                                     update_values | update_quadrature_points | update_JxW_values);
     const unsigned int        n_dofs = fe.n_dofs_per_cell();
     const unsigned int        n_q    = cell_quadrature.size();
     FullMatrix<double>        cell_matrix(n_dofs, n_dofs);
@@ -458,7 +451,7 @@ namespace StabilizedLagrangian
           for (const auto &bc : boundary_conditions.neumann)
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-                add_neumann_contribution(cell, f, *bc.traction, cell_rhs);
+                add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
 
           if (assemble_matrix)
             newton_constraints.distribute_local_to_global(
@@ -474,15 +467,13 @@ namespace StabilizedLagrangian
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const unsigned int                                    face_no,
       Functions::ParsedFunction<dim>                       &traction,
+      FEFaceValues<dim>                                    &fe_face_values,
       Vector<double>                                       &cell_rhs) const
   {
-    const QGauss<dim - 1> quadrature(fe_pair->displacement_degree() + 1);
-    FEFaceValues<dim>     fe_face_values(
-        *fe_u, quadrature, update_values | update_quadrature_points | update_JxW_values);
     fe_face_values.reinit(cell, face_no);
     traction.set_time(time);
     Vector<double> t(dim);
-    for (unsigned int q = 0; q < quadrature.size(); ++q)
+    for (unsigned int q = 0; q < fe_face_values.n_quadrature_points; ++q)
       {
         traction.vector_value(fe_face_values.quadrature_point(q), t);
         for (unsigned int i = 0; i < fe_u->n_dofs_per_cell(); ++i)

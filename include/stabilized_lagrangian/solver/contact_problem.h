@@ -139,10 +139,6 @@ namespace StabilizedLagrangian
       return contact_states;
     }
 
-    /** @brief Set the solution at the start of the current load step (for Δs). */
-    void
-    set_step_start_solution(const TrilinosWrappers::MPI::Vector &start);
-
     /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row. */
     std::vector<std::pair<types::global_dof_index, unsigned int>>
     locally_owned_multiplier_components() const;
@@ -231,6 +227,7 @@ namespace StabilizedLagrangian
     add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
                              const unsigned int                                    face_no,
                              Functions::ParsedFunction<dim>                       &traction,
+                             FEFaceValues<dim>                                    &fe_face_values,
                              Vector<double>                                       &cell_rhs) const;
     double
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
@@ -309,7 +306,5 @@ namespace StabilizedLagrangian
     std::string                                 parameters_used;
     std::vector<std::pair<double, std::string>> pvd_records;
     StatisticsWriter                            statistics;
-
-    template <int> friend class ContactOutput;
   };
 } // namespace StabilizedLagrangian
