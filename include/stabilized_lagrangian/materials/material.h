@@ -5,6 +5,8 @@
 
 #include <stabilized_lagrangian/plugins.h>
 
+#include <stdexcept>
+
 namespace StabilizedLagrangian
 {
   namespace Materials
@@ -27,6 +29,16 @@ namespace StabilizedLagrangian
       Tensor<4, dim> tangent;
       /** Cauchy stress in the out-of-plane direction (plane strain, dim = 2). */
       double out_of_plane_stress = 0.;
+    };
+
+    /**
+     * @brief Thrown by a model when a state leaves its admissible range
+     * (for instance J = det F ≤ 0); the load step is then cut.
+     */
+    class InadmissibleState : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
     };
 
     /**
@@ -58,6 +70,17 @@ namespace StabilizedLagrangian
       n_history() const
       {
         return 0;
+      }
+
+      /**
+       * @brief Values of the history variables before any loading (size
+       * n_history()); zero unless a model says otherwise.
+       */
+      virtual void
+      initial_history(const ArrayView<double> &history) const
+      {
+        for (double &h : history)
+          h = 0.;
       }
 
       /** @brief Whether the kinematics are finite strain (geometry must be updated). */
