@@ -23,14 +23,15 @@ namespace StabilizedLagrangian
   namespace
   {
     /**
-     * Cauchy stress tensor and von Mises stress from the displacement gradient
-     * (plane strain: the out-of-plane stress enters the von Mises stress).
+     * Cauchy stress tensor and von Mises stress, averaged over the quadrature
+     * points of each cell where the history variables live (plane strain:
+     * the out-of-plane stress enters the von Mises stress).
      */
-    template <int dim> class StressPostprocessor : public DataPostprocessor<dim>
+    template <int dim> class CellStressPostprocessor : public DataPostprocessor<dim>
     {
     public:
-      explicit StressPostprocessor(const Materials::Interface<dim> &material)
-          : material(material)
+      explicit CellStressPostprocessor(const std::vector<Tensor<2, 3>> &cell_stress)
+          : cell_stress(cell_stress)
       {
       }
 
@@ -38,25 +39,16 @@ namespace StabilizedLagrangian
       evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>>                &computed) const override
       {
-        for (unsigned int p = 0; p < inputs.solution_gradients.size(); ++p)
+        const Tensor<2, 3> &sigma =
+            cell_stress[inputs.template get_cell<dim>()->active_cell_index()];
+        const Tensor<2, 3> deviator  = sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
+        const double       von_mises = std::sqrt(1.5 * scalar_product(deviator, deviator));
+        for (auto &values : computed)
           {
-            Tensor<2, dim> grad_u;
-            for (unsigned int d = 0; d < dim; ++d)
-              grad_u[d] = inputs.solution_gradients[p][d];
-            const auto response =
-                material.evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
-            // small strain: the stress is the Cauchy stress
-            Tensor<2, 3> sigma;
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = 0; j < dim; ++j)
-                {
-                  sigma[i][j]              = response.stress[i][j];
-                  computed[p](i * dim + j) = response.stress[i][j];
-                }
-            if (dim == 2)
-              sigma[2][2] = response.out_of_plane_stress;
-            const Tensor<2, 3> deviator = sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
-            computed[p](dim * dim)      = std::sqrt(1.5 * scalar_product(deviator, deviator));
+                values(i * dim + j) = sigma[i][j];
+            values(dim * dim) = von_mises;
           }
       }
 
@@ -80,13 +72,49 @@ namespace StabilizedLagrangian
       UpdateFlags
       get_needed_update_flags() const override
       {
-        return update_gradients;
+        return update_default;
       }
 
     private:
-      const Materials::Interface<dim> &material;
+      const std::vector<Tensor<2, 3>> &cell_stress;
     };
   } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
+                                             std::vector<Tensor<2, 3>>           &cell_stress,
+                                             std::vector<Vector<float>> &cell_history_fields) const
+  {
+    const unsigned int n_cells = triangulation.n_active_cells();
+    cell_stress.assign(n_cells, Tensor<2, 3>());
+    cell_history_fields.assign(material->history_field_names().size(), Vector<float>(n_cells));
+    FEValues<dim>                    fe_values(*fe_u, cell_quadrature, update_gradients);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
+    std::vector<double>              scratch(material->n_history());
+    const double                     weight = 1. / cell_quadrature.size();
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(u, gradients);
+          const unsigned int index = cell->active_cell_index();
+          for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
+            {
+              // the committed history is that of this converged state
+              const auto history = material_history.committed(index, q);
+              const auto response =
+                  material->evaluate(gradients[q], history, make_array_view(scratch));
+              cell_stress[index] +=
+                  weight *
+                  Materials::cauchy_stress(gradients[q], response, material->is_finite_strain());
+              const std::vector<double> fields = material->history_fields(history);
+              for (unsigned int f = 0; f < fields.size(); ++f)
+                cell_history_fields[f][index] += weight * fields[f];
+            }
+        }
+  }
 
   template <int dim>
   void
@@ -189,8 +217,14 @@ namespace StabilizedLagrangian
             dim, DataComponentInterpretation::component_is_part_of_vector);
         data_out.add_data_vector(
             dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
-        const StressPostprocessor<dim> stress(*material);
+        std::vector<Tensor<2, 3>>  cell_stress;
+        std::vector<Vector<float>> cell_history_fields;
+        compute_cell_averages(u, cell_stress, cell_history_fields);
+        const CellStressPostprocessor<dim> stress(cell_stress);
         data_out.add_data_vector(dof_handler_u, u, stress);
+        const std::vector<std::string> history_names = material->history_field_names();
+        for (unsigned int f = 0; f < history_names.size(); ++f)
+          data_out.add_data_vector(cell_history_fields[f], history_names[f]);
 
         std::vector<std::string> names = {"contact_pressure"};
         std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds = {

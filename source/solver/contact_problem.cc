@@ -59,6 +59,7 @@ namespace StabilizedLagrangian
     make_grid();
     setup_dofs();
     setup_contact_points();
+    material_history.initialize(triangulation, cell_quadrature.size(), *material);
   }
 
   namespace
@@ -384,11 +385,17 @@ namespace StabilizedLagrangian
     if (assemble_matrix)
       system_matrix = 0.;
     system_rhs = 0.;
+    inadmissible_state.clear();
     assemble_volume(assemble_matrix);
     assemble_contact(assemble_matrix);
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+    // every rank learns that one of them met an inadmissible state
+    const auto messages = Utilities::MPI::all_gather(mpi_communicator, inadmissible_state);
+    for (const auto &message : messages)
+      if (!message.empty())
+        inadmissible_state = message;
   }
 
   template <int dim>
@@ -425,8 +432,21 @@ namespace StabilizedLagrangian
               Tensor<2, dim> grad_u;
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
-              const Materials::Response<dim> response =
-                  material->evaluate(grad_u, ArrayView<const double>(), ArrayView<double>());
+              Materials::Response<dim> response;
+              try
+                {
+                  response =
+                      material->evaluate(grad_u,
+                                         material_history.committed(cell->active_cell_index(), q),
+                                         material_history.trial(cell->active_cell_index(), q));
+                }
+              catch (const Materials::InadmissibleState &error)
+                {
+                  std::ostringstream where;
+                  where << error.what() << " (in the cell centred at X = " << cell->center() << ")";
+                  inadmissible_state = where.str();
+                  return;
+                }
               const double JxW = fe_values.JxW(q);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;

@@ -87,7 +87,8 @@ namespace StabilizedLagrangian
           }
         ++step;
         consecutive_cuts = 0;
-        stats.time       = time;
+        material_history.commit();
+        stats.time = time;
         {
           TimerOutput::Scope scope(timer, "contact search");
           compute_contact_statistics(stats);
@@ -274,6 +275,11 @@ namespace StabilizedLagrangian
         // after an update the residual alone often shows convergence: the
         // Jacobian is assembled only when another solve follows
         assemble_newton_system(iteration == 0);
+        if (!inadmissible_state.empty())
+          {
+            pcout << "  Newton: " << inadmissible_state << "\n";
+            return false;
+          }
         const double residual = residual_norm();
         if (!std::isfinite(residual))
           {

@@ -6,6 +6,8 @@
 #include <stabilized_lagrangian/plugins.h>
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace StabilizedLagrangian
 {
@@ -83,6 +85,23 @@ namespace StabilizedLagrangian
           h = 0.;
       }
 
+      /**
+       * @brief Names of the scalar fields derived from the history variables
+       * that the output shows (for instance the equivalent plastic strain).
+       */
+      virtual std::vector<std::string>
+      history_field_names() const
+      {
+        return {};
+      }
+
+      /** @brief Values of the fields named by history_field_names() for @p history. */
+      virtual std::vector<double>
+      history_fields(const ArrayView<const double> & /*history*/) const
+      {
+        return {};
+      }
+
       /** @brief Whether the kinematics are finite strain (geometry must be updated). */
       virtual bool
       is_finite_strain() const = 0;
@@ -98,6 +117,33 @@ namespace StabilizedLagrangian
       virtual double
       poissons_ratio() const = 0;
     };
+
+    /**
+     * @brief Cauchy stress σ = P Fᵀ / J of a response (σ = P in small strain),
+     * as a 3 x 3 tensor (plane strain: with the out-of-plane component).
+     */
+    template <int dim>
+    Tensor<2, 3>
+    cauchy_stress(const Tensor<2, dim> &grad_u,
+                  const Response<dim>  &response,
+                  const bool            finite_strain)
+    {
+      Tensor<2, dim> sigma = response.stress;
+      if (finite_strain)
+        {
+          Tensor<2, dim> F = grad_u;
+          for (unsigned int d = 0; d < dim; ++d)
+            F[d][d] += 1.;
+          sigma = response.stress * transpose(F) / determinant(F);
+        }
+      Tensor<2, 3> result;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          result[i][j] = sigma[i][j];
+      if (dim == 2)
+        result[2][2] = response.out_of_plane_stress;
+      return result;
+    }
 
     /** @brief The registry of material models for dimension @p dim. */
     template <int dim> using Registry = PluginRegistry<Interface<dim>>;

@@ -23,6 +23,7 @@
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
 #include <stabilized_lagrangian/materials/material.h>
+#include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
@@ -221,6 +222,7 @@ namespace StabilizedLagrangian
     setup_contact_points();
     void
     assemble_volume(const bool assemble_matrix);
+
     void
     assemble_contact(const bool assemble_matrix);
     void
@@ -257,6 +259,11 @@ namespace StabilizedLagrangian
     // --- output.cc ---
     void
     output_results(const unsigned int step, const double time);
+    /** Cell averages of the Cauchy stress and of the material's history fields. */
+    void
+    compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
+                          std::vector<Tensor<2, 3>>           &cell_stress,
+                          std::vector<Vector<float>>          &cell_history_fields) const;
 
     MPI_Comm           mpi_communicator;
     ConditionalOStream pcout;
@@ -274,6 +281,9 @@ namespace StabilizedLagrangian
     std::unique_ptr<Materials::Interface<dim>>   material;
     std::unique_ptr<FrictionLaws::Interface>     friction_law;
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
+    Materials::QuadratureHistory                 material_history;
+    /** Set by an assembly that met a material state outside its admissible range. */
+    std::string inadmissible_state;
 
     parallel::distributed::Triangulation<dim> triangulation;
     std::unique_ptr<FiniteElement<dim>>       fe_u, fe_m;

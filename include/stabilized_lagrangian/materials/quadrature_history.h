@@ -1,0 +1,88 @@
+#pragma once
+
+#include <deal.II/base/array_view.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <stabilized_lagrangian/materials/material.h>
+
+#include <vector>
+
+namespace StabilizedLagrangian
+{
+  namespace Materials
+  {
+    /**
+     * @brief History variables of the material at every quadrature point of
+     * the active cells.
+     *
+     * Two copies are kept: the committed values, from the end of the last
+     * converged load step, which every evaluation starts from, and the trial
+     * values written by the evaluation at the current iterate. commit() makes
+     * the trial values the committed ones; it is called only when a load step
+     * has converged, so a failed (cut) step leaves no trace.
+     */
+    class QuadratureHistory
+    {
+    public:
+      /**
+       * @brief Size the storage for @p n_quadrature_points points per active
+       * cell of @p triangulation and set the initial values of @p material.
+       */
+      template <int dim>
+      void
+      initialize(const Triangulation<dim> &triangulation,
+                 const unsigned int        n_quadrature_points,
+                 const Interface<dim>     &material)
+      {
+        n_points_per_cell = n_quadrature_points;
+        n_values          = material.n_history();
+        committed_values.assign(static_cast<std::size_t>(triangulation.n_active_cells()) *
+                                    n_points_per_cell * n_values,
+                                0.);
+        for (std::size_t point = 0; n_values > 0 && point * n_values < committed_values.size();
+             ++point)
+          material.initial_history(
+              ArrayView<double>(committed_values.data() + point * n_values, n_values));
+        trial_values = committed_values;
+      }
+
+      /** @brief Committed values at point @p q of the active cell @p cell_index. */
+      ArrayView<const double>
+      committed(const unsigned int cell_index, const unsigned int q) const
+      {
+        if (n_values == 0)
+          return {};
+        return {committed_values.data() + offset(cell_index, q), n_values};
+      }
+
+      /** @brief Trial values at point @p q of the active cell @p cell_index. */
+      ArrayView<double>
+      trial(const unsigned int cell_index, const unsigned int q)
+      {
+        if (n_values == 0)
+          return {};
+        return {trial_values.data() + offset(cell_index, q), n_values};
+      }
+
+      /** @brief Accept the trial values of a converged load step. */
+      void
+      commit()
+      {
+        committed_values = trial_values;
+      }
+
+    private:
+      std::size_t
+      offset(const unsigned int cell_index, const unsigned int q) const
+      {
+        return (static_cast<std::size_t>(cell_index) * n_points_per_cell + q) * n_values;
+      }
+
+      unsigned int        n_points_per_cell = 0;
+      unsigned int        n_values          = 0;
+      std::vector<double> committed_values;
+      std::vector<double> trial_values;
+    };
+  } // namespace Materials
+} // namespace StabilizedLagrangian
