@@ -473,11 +473,7 @@ namespace StabilizedLagrangian
               if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
                 add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
 
-          if (assemble_matrix)
-            newton_constraints.distribute_local_to_global(
-                cell_matrix, cell_rhs, dofs, system_matrix, system_rhs);
-          else
-            newton_constraints.distribute_local_to_global(cell_rhs, dofs, system_rhs);
+          add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
         }
   }
 
@@ -596,12 +592,31 @@ namespace StabilizedLagrangian
                   local_matrix(n_u_cell + a, n_u_cell + b) += w * block * psi[a] * psi[b];
                 }
           }
-        if (assemble_matrix)
-          newton_constraints.distribute_local_to_global(
-              local_matrix, local_rhs, local_dofs, system_matrix, system_rhs);
-        else
-          newton_constraints.distribute_local_to_global(local_rhs, local_dofs, system_rhs);
+        add_to_global_system(local_matrix, local_rhs, local_dofs, assemble_matrix);
       }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_to_global_system(const FullMatrix<double> &local_matrix,
+                                            Vector<double>           &local_rhs,
+                                            const std::vector<types::global_dof_index> &dofs,
+                                            const bool assemble_matrix)
+  {
+    if (!assemble_matrix)
+      {
+        newton_constraints.distribute_local_to_global(local_rhs, dofs, system_rhs);
+        return;
+      }
+    // Tangent predictor: the residual linearised at u + Δū, R(u) + K Δū, where
+    // Δū is the Dirichlet increment of the load step (zero off the Dirichlet
+    // boundary), so the first solve carries the boundary motion into the body.
+    if (dirichlet_predictor)
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        for (unsigned int j = 0; j < dofs.size(); ++j)
+          local_rhs(i) += local_matrix(i, j) * dirichlet_increment(dofs[j]);
+    newton_constraints.distribute_local_to_global(
+        local_matrix, local_rhs, dofs, system_matrix, system_rhs);
   }
 
   template <int dim>

@@ -164,12 +164,17 @@ namespace StabilizedLagrangian
         VectorTools::interpolate_boundary_values(
             dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
       }
+    // The increment is not added to the iterate here: the first Newton solve
+    // of the step applies it together with the tangent predictor.
+    TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
     for (const auto &[index, value] : values)
       if (locally_owned.is_element(index))
-        solution(index) = value;
-    solution.compress(VectorOperation::insert);
-    hanging_constraints.distribute(solution);
-    update_ghosts();
+        increment(index) = value - solution(index);
+    increment.compress(VectorOperation::insert);
+    hanging_constraints.distribute(increment);
+    dirichlet_predictor = increment.linfty_norm() > 0.;
+    dirichlet_increment.reinit(locally_owned, locally_relevant, mpi_communicator);
+    dirichlet_increment = increment;
   }
 
   template <int dim>
@@ -288,12 +293,13 @@ namespace StabilizedLagrangian
           }
         if (iteration == 0)
           first_residual = residual;
+        const bool   predictor = dirichlet_predictor;
         const double tolerance =
             solver_parameters.newton_tolerance *
             (solver_parameters.newton_criterion == Parameters::ResidualCriterion::absolute
                  ? 1.
                  : first_residual);
-        if (residual <= tolerance)
+        if (!predictor && residual <= tolerance)
           {
             stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, 0});
             stats.newton_iterations += iteration;
@@ -323,6 +329,14 @@ namespace StabilizedLagrangian
           }
         newton_constraints.distribute(update);
         solution += update;
+        if (predictor)
+          {
+            // the Dirichlet increment (zero in the update's constrained rows)
+            TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
+            increment = dirichlet_increment;
+            solution += increment;
+            dirichlet_predictor = false;
+          }
         update_ghosts();
       }
   }

@@ -14,6 +14,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
@@ -225,6 +226,12 @@ namespace StabilizedLagrangian
 
     void
     assemble_contact(const bool assemble_matrix);
+    /** Add a local system to the global one (with the tangent predictor, if pending). */
+    void
+    add_to_global_system(const FullMatrix<double>                   &local_matrix,
+                         Vector<double>                             &local_rhs,
+                         const std::vector<types::global_dof_index> &dofs,
+                         const bool                                  assemble_matrix);
     void
     add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
                              const unsigned int                                    face_no,
@@ -306,6 +313,9 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector ghosted_solution;        ///< relevant, kept in sync with solution
     TrilinosWrappers::MPI::Vector step_start;              ///< relevant, solution at the step start
     TrilinosWrappers::MPI::Vector residual_scaling;        ///< 1, r_n or r_t per owned row
+    /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
+    TrilinosWrappers::MPI::Vector dirichlet_increment;
+    bool                          dirichlet_predictor = false;
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
