@@ -102,8 +102,9 @@ namespace StabilizedLagrangian
         step_size = std::min(2. * step_size, nominal_step);
       }
     pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
-          << ", mean per load step: "
-          << static_cast<double>(statistics.cumulative_newton_iterations()) / step << "\n";
+          << ", mean per load step: " << std::fixed << std::setprecision(2)
+          << static_cast<double>(statistics.cumulative_newton_iterations()) / step
+          << std::defaultfloat << "\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
     write_run_summary(step, wall_clock.wall_time());
