@@ -232,6 +232,12 @@ namespace StabilizedLagrangian
                         "absolute",
                         Patterns::Selection("absolute|relative"),
                         "absolute: the seed's criterion; relative: to the first residual.");
+      prm.declare_entry("Line search steps",
+                        "5",
+                        Patterns::Integer(0),
+                        "Backtracking: the Newton step is halved at most this many times "
+                        "while the residual does not decrease (or a material point leaves "
+                        "its admissible range); 0 takes every full step.");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -254,6 +260,7 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Newton");
       newton_max_iterations = prm.get_integer("Maximum iterations");
       newton_tolerance      = prm.get_double("Tolerance");
+      line_search_steps     = prm.get_integer("Line search steps");
       newton_criterion      = prm.get("Residual") == "absolute" ? ResidualCriterion::absolute
                                                                 : ResidualCriterion::relative;
       prm.leave_subsection();

@@ -26,6 +26,19 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True):
     return result.returncode, output
 
 
+QUIET_OUTPUT = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
+
+
+def run_checked(executable, prm_text, workdir, check, name):
+    """Run prm_text in workdir (output in workdir/output, no vtu); check that it exits with 0,
+    printing the end of its log if not; return whether it did."""
+    code, log = run(executable, prm_text + QUIET_OUTPUT, workdir, expect_success=False)
+    check(code == 0, f"{name}: exit code {code}")
+    if code != 0:
+        print(log[-3000:])
+    return code == 0
+
+
 def scene(name, **replacements):
     """The text of tests/scenes/<name>.prm with `@KEY@` placeholders replaced."""
     with open(os.path.join(os.path.dirname(__file__), "scenes", name + ".prm")) as f:

@@ -105,6 +105,7 @@ namespace StabilizedLagrangian
       double            friction_tolerance;
       unsigned int      status_max_iterations;
       unsigned int      newton_max_iterations;
+      unsigned int      line_search_steps; ///< halvings of the Newton step, 0: none
       double            newton_tolerance;
       ResidualCriterion newton_criterion;
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <regex>
 
 namespace StabilizedLagrangian
@@ -275,12 +276,16 @@ namespace StabilizedLagrangian
                                    const unsigned int j,
                                    const unsigned int i)
   {
-    double first_residual = 0.;
+    // The first assembly (with the Jacobian) is at the iterate the outer
+    // loops hand over; afterwards the residual at each new iterate comes from
+    // the line search, and the Jacobian is assembled only when another solve
+    // follows.
+    assemble_newton_system(true);
+    bool   jacobian_current  = true;
+    double first_residual    = 0.;
+    double previous_residual = std::numeric_limits<double>::infinity();
     for (unsigned int iteration = 0;; ++iteration)
       {
-        // after an update the residual alone often shows convergence: the
-        // Jacobian is assembled only when another solve follows
-        assemble_newton_system(iteration == 0);
         if (!inadmissible_state.empty())
           {
             pcout << "  Newton: " << inadmissible_state << "\n";
@@ -314,7 +319,7 @@ namespace StabilizedLagrangian
             return false;
           }
 
-        if (iteration > 0)
+        if (!jacobian_current)
           assemble_newton_system(true);
         TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
         system_rhs *= -1.;
@@ -329,16 +334,55 @@ namespace StabilizedLagrangian
             return false;
           }
         newton_constraints.distribute(update);
-        solution += update;
         if (predictor)
           {
             // the Dirichlet increment (zero in the update's constrained rows)
             TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
             increment = dirichlet_increment;
-            solution += increment;
+            update += increment;
             dirichlet_predictor = false;
           }
+        // the predictor step is taken whole: it carries the boundary data
+        line_search(update,
+                    residual,
+                    previous_residual,
+                    predictor ? 0 : solver_parameters.line_search_steps);
+        previous_residual = residual;
+        jacobian_current  = false;
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
+                                   const double                         residual,
+                                   const double                         previous_residual,
+                                   const unsigned int                   max_halvings)
+  {
+    // Non-monotone backtracking. With frozen statuses the residual is only
+    // piecewise smooth (stick/slip in P_B, elastic/plastic switches at the
+    // quadrature points), so a full Newton step may raise the residual on the
+    // way to convergence; it is kept when the residual is below that of the
+    // iterate before the current one. Otherwise (a cycle, or a material point
+    // outside its admissible range) the step is halved until the residual
+    // decreases, at most max_halvings times.
+    const TrilinosWrappers::MPI::Vector start = solution;
+    double                              step  = 1.;
+    for (unsigned int halving = 0;; ++halving)
+      {
+        solution = start;
+        solution.add(step, update);
         update_ghosts();
+        assemble_newton_system(false);
+        if (halving == max_halvings)
+          return;
+        if (inadmissible_state.empty())
+          {
+            const double reference = halving == 0 ? previous_residual : residual;
+            if (residual_norm() < (1. - 1e-4 * step) * reference)
+              return;
+          }
+        step /= 2.;
       }
   }
 
@@ -395,6 +439,8 @@ namespace StabilizedLagrangian
   template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
   template bool ContactProblem<dim>::newton_loop(                                               \
       StepStatistics &, unsigned int, unsigned int, unsigned int);                              \
+  template void ContactProblem<dim>::line_search(                                               \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int);                     \
   template unsigned int ContactProblem<dim>::update_statuses();                                 \
   template double       ContactProblem<dim>::update_friction_thresholds();
 

@@ -102,6 +102,20 @@ namespace StabilizedLagrangian
       void
       initial_history(const ArrayView<double> &history) const override;
 
+      /** @brief The equivalent plastic strain α is shown in the output. */
+      std::vector<std::string>
+      history_field_names() const override
+      {
+        return {"equivalent_plastic_strain"};
+      }
+
+      /** @brief α from @p history. */
+      std::vector<double>
+      history_fields(const ArrayView<const double> &history) const override
+      {
+        return {history[equivalent_plastic_strain_index]};
+      }
+
       /** @brief Whether `Kinematics` is finite strain. */
       bool
       is_finite_strain() const override

@@ -205,6 +205,11 @@ namespace StabilizedLagrangian
                 const unsigned int geometry_iteration,
                 const unsigned int friction_iteration,
                 const unsigned int status_iteration);
+    void
+    line_search(const TrilinosWrappers::MPI::Vector &update,
+                const double                         residual,
+                const double                         previous_residual,
+                const unsigned int                   max_halvings);
     unsigned int
     update_statuses();
     double
