@@ -7,7 +7,7 @@ For each of prm/patin_elastic.prm, prm/patin_neo_hookean.prm and
 prm/patin_elastoplastic.prm, runs the scene as shipped and the same scene with
 the whole load in one step (the seed's table is for one step), and writes the
 tables in the layout of the seed's table (contrib/iteration_table.py) into
-doc/patin_paper_tables.md, with the run time and the Newton totals."""
+doc/patin_iteration_tables.md, with the run time and the Newton totals."""
 import argparse
 import csv
 import os
@@ -21,7 +21,7 @@ root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 parser.add_argument("--executable", required=True)
 parser.add_argument("--workdir", default="/tmp/paper_table")
-parser.add_argument("--output", default=os.path.join(root, "doc", "patin_paper_tables.md"))
+parser.add_argument("--output", default=os.path.join(root, "doc", "patin_iteration_tables.md"))
 args = parser.parse_args()
 executable = os.path.abspath(args.executable)
 
