@@ -29,6 +29,10 @@ cases = {
     "wrong variable names": (base.replace("x,y,t", "x,t"), ["Variable names", "x,y,t"]),
     "bad r_n": (base.replace("set r_n                  = 1e4", "set r_n                  = 0"),
                 ["r_n", "> 0"]),
+    "softening hardening curve": (
+        base.replace("set Model = linear elastic", "set Model = J2 plasticity\n"
+                     "  subsection J2 plasticity\n    set Hardening curve = 0:194, 0.1:150\n  end"),
+        ["Hardening curve", "150"]),
 }
 for name, (text, expected) in cases.items():
     out = f"{workdir}/{name.replace(' ', '_')}"
@@ -57,6 +61,16 @@ check(log.count("cutting the step") == 2 and "did not converge after 2 step cuts
       "non-convergence: the step is halved twice, then a clear message")
 check(os.path.isfile(f"{out}/output/statistics.csv") and os.path.isfile(f"{out}/output/solution.pvd"),
       "non-convergence: statistics.csv and solution.pvd are kept")
+
+# a material point leaves its admissible range (neo-Hookean block pressed by
+# more than its height): the step is cut, then the run stops cleanly, naming J
+text = base.replace("set Model = linear elastic", "set Model = neo-Hookean").replace(
+    "u0=0.5", "u0=60").replace("set Maximum step cuts    = 5", "set Maximum step cuts    = 1")
+text += "\nsubsection Load stepping\n  set Number of load steps = 1\nend\n"
+out = f"{workdir}/inadmissible"
+code, log = sltest.run(executable, text, out, expect_success=False)
+check(code == 2 and "J = det F" in log and "admissible range" in log,
+      f"inadmissible state: exit code {code}, the log names J and the admissible range")
 
 # a missing parameter file
 result = subprocess.run([executable, f"{workdir}/does-not-exist.prm"], capture_output=True, text=True)
