@@ -15,7 +15,9 @@ namespace StabilizedLagrangian
   namespace Parameters
   {
     void
-    Contact::declare_parameters(ParameterHandler &prm, const std::string &fe_pairs)
+    Contact::declare_parameters(ParameterHandler  &prm,
+                                const std::string &fe_pairs,
+                                const std::string &fe_pair_documentation)
     {
       prm.enter_subsection("Contact");
       prm.declare_entry("Contact boundary ids",
@@ -27,15 +29,15 @@ namespace StabilizedLagrangian
           "r_n", "1e4", Patterns::Double(), "Normal augmentation parameter r_n > 0 (N/mm^3).");
       prm.declare_entry(
           "r_t", "1", Patterns::Double(), "Tangential augmentation parameter r_t > 0 (1/mm).");
-      prm.declare_entry("Finite element pair",
-                        "Q1/P1",
-                        Patterns::Selection(fe_pairs),
-                        "Displacement / multiplier spaces (λ_n and Λ together).");
-      prm.declare_entry("Contact quadrature",
-                        "Gauss-Lobatto",
-                        Patterns::Selection("Gauss|Gauss-Lobatto"),
-                        "Quadrature on Γc; the contact and stick/slip statuses live at its "
-                        "points. Gauss-Lobatto puts them at the multiplier nodes.");
+      prm.declare_entry(
+          "Finite element pair", "Q1/P1", Patterns::Selection(fe_pairs), fe_pair_documentation);
+      prm.declare_entry(
+          "Contact quadrature",
+          "Gauss-Lobatto",
+          Patterns::Selection("Gauss|Gauss-Lobatto"),
+          "Quadrature on Γc; the contact and stick/slip statuses live at its "
+          "points. Gauss-Lobatto (degree max(k, m) + 1 points per direction) puts them "
+          "at the multiplier nodes when m >= k.");
       FrictionLaws::declare_parameters(prm);
       prm.leave_subsection();
     }
@@ -277,6 +279,13 @@ namespace StabilizedLagrangian
                         "Trilinos Amesos sparse direct solver for each Newton system. "
                         "MUMPS is 2x (2D) to 8x (3D) faster than KLU on these saddle-point "
                         "systems (doc/benchmark_patin.md).");
+      prm.declare_entry("Null pivot detection",
+                        "false",
+                        Patterns::Bool(),
+                        "MUMPS only: detect null pivots and return one solution of a singular "
+                        "system instead of failing. Pairs that violate the inf-sup condition "
+                        "(Q1/P2) make the Newton system singular wherever contact is active; "
+                        "with this their (non-unique) multipliers can be looked at.");
       prm.leave_subsection();
     }
 
@@ -284,7 +293,12 @@ namespace StabilizedLagrangian
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
-      direct_solver = prm.get("Direct solver");
+      direct_solver        = prm.get("Direct solver");
+      null_pivot_detection = prm.get_bool("Null pivot detection");
+      if (null_pivot_detection && direct_solver != "Amesos_Mumps")
+        throw InputError("Linear solver/Null pivot detection = true needs Direct solver = "
+                         "Amesos_Mumps, got " +
+                         direct_solver + ".");
       prm.leave_subsection();
     }
 
@@ -321,7 +335,10 @@ namespace StabilizedLagrangian
       Geometry::declare_parameters<dim>(prm);
       Obstacles::declare_parameters<dim>(prm);
       Materials::declare_parameters<dim>(prm);
-      Contact::declare_parameters(prm, Discretization::Registry<dim>::pattern());
+      Contact::declare_parameters(prm,
+                                  Discretization::Registry<dim>::pattern(),
+                                  Discretization::Registry<dim>::documentation(
+                                      "Displacement / multiplier spaces (λ_n and Λ together):"));
       BoundaryConditions<dim>::declare_parameters(prm);
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);

@@ -43,7 +43,7 @@ def scene(name, **replacements):
     """The text of tests/scenes/<name>.prm with `@KEY@` placeholders replaced."""
     with open(os.path.join(os.path.dirname(__file__), "scenes", name + ".prm")) as f:
         text = f.read()
-    for key, value in replacements.items():
+    for key, value in {"PAIR": "Q1/P1", **replacements}.items():
         text = text.replace("@" + key + "@", str(value))
     return text
 

@@ -39,7 +39,9 @@ namespace StabilizedLagrangian
       ContactQuadrature            quadrature = ContactQuadrature::gauss_lobatto;
 
       static void
-      declare_parameters(ParameterHandler &prm, const std::string &fe_pairs);
+      declare_parameters(ParameterHandler  &prm,
+                         const std::string &fe_pairs,
+                         const std::string &fe_pair_documentation);
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -119,6 +121,7 @@ namespace StabilizedLagrangian
     struct LinearSolver
     {
       std::string direct_solver;
+      bool        null_pivot_detection = false; ///< MUMPS: solve singular systems
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -1,3 +1,4 @@
+#include <deal.II/fe/fe_face.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_trace.h>
@@ -9,16 +10,19 @@ namespace StabilizedLagrangian
   namespace Discretization
   {
     /**
-     * @brief Lagrange Q_k displacement with a continuous Lagrange multiplier of
-     * degree m on the trace of the displacement mesh (FE_TraceQ).
+     * @brief Lagrange Q_k displacement with a Lagrange multiplier of degree m
+     * on the faces of the displacement mesh: continuous across faces
+     * (FE_TraceQ) or discontinuous, face by face (FE_FaceQ).
      */
-    template <int dim> class LagrangeTracePair : public FEPair<dim>
+    template <int dim> class LagrangeFacePair : public FEPair<dim>
     {
     public:
-      LagrangeTracePair(const unsigned int displacement_degree,
-                        const unsigned int multiplier_degree)
+      LagrangeFacePair(const unsigned int displacement_degree,
+                       const unsigned int multiplier_degree,
+                       const bool         continuous_multiplier)
           : u_degree(displacement_degree)
           , m_degree(multiplier_degree)
+          , continuous(continuous_multiplier)
       {
       }
 
@@ -31,7 +35,9 @@ namespace StabilizedLagrangian
       std::unique_ptr<FiniteElement<dim>>
       multiplier_element(const unsigned int n_components) const override
       {
-        return std::make_unique<FESystem<dim>>(FE_TraceQ<dim>(m_degree), n_components);
+        if (continuous)
+          return std::make_unique<FESystem<dim>>(FE_TraceQ<dim>(m_degree), n_components);
+        return std::make_unique<FESystem<dim>>(FE_FaceQ<dim>(m_degree), n_components);
       }
 
       unsigned int
@@ -48,22 +54,66 @@ namespace StabilizedLagrangian
 
     private:
       const unsigned int u_degree, m_degree;
+      const bool         continuous;
     };
 
     namespace
     {
       template <int dim>
+      void
+      add_pair(const std::string &name,
+               const std::string &description,
+               const unsigned int displacement_degree,
+               const unsigned int multiplier_degree,
+               const bool         continuous_multiplier)
+      {
+        Registry<dim>::add(
+            name,
+            description,
+            [](ParameterHandler &) {},
+            [=](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
+              return std::make_unique<LagrangeFacePair<dim>>(
+                  displacement_degree, multiplier_degree, continuous_multiplier);
+            });
+      }
+
+      template <int dim>
       bool
       register_pairs()
       {
-        return Registry<dim>::add(
-            "Q1/P1",
-            "Q1 displacement, continuous piecewise-linear multipliers on the displacement's "
-            "boundary mesh",
-            [](ParameterHandler &) {},
-            [](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
-              return std::make_unique<LagrangeTracePair<dim>>(1, 1);
-            });
+        add_pair<dim>("Q1/P1",
+                      "Q1 displacement, continuous piecewise-linear multipliers on the "
+                      "displacement's boundary mesh (the seed's choice; inf-sup stable)",
+                      1,
+                      1,
+                      true);
+        add_pair<dim>("Q2/P1",
+                      "Q2 displacement, continuous piecewise-linear multipliers on the "
+                      "displacement's boundary mesh (inf-sup stable)",
+                      2,
+                      1,
+                      true);
+        add_pair<dim>("Q2/P2",
+                      "Q2 displacement, continuous piecewise-quadratic multipliers on the "
+                      "displacement's boundary mesh (inf-sup stable: the multiplier space is "
+                      "the displacement trace)",
+                      2,
+                      2,
+                      true);
+        add_pair<dim>("Q1/P0",
+                      "Q1 displacement, multipliers constant on each boundary face (stable "
+                      "in 2D)",
+                      1,
+                      0,
+                      false);
+        add_pair<dim>("Q1/P2",
+                      "Q1 displacement, continuous piecewise-quadratic multipliers: richer "
+                      "than the displacement trace, violates the inf-sup condition (for "
+                      "comparison only)",
+                      1,
+                      2,
+                      true);
+        return true;
       }
       const bool registered_2d = register_pairs<2>();
       const bool registered_3d = register_pairs<3>();

@@ -143,7 +143,10 @@ namespace StabilizedLagrangian
     if (contact_parameters.quadrature == Parameters::ContactQuadrature::gauss)
       contact_quadrature = QGauss<dim - 1>(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
     else
-      contact_quadrature = QGaussLobatto<dim - 1>(std::max(fe_pair->multiplier_degree(), 1u) + 1);
+      // nodal for the multiplier when it is at least as rich as the displacement
+      // trace; otherwise enough points to integrate ψ φ·n exactly
+      contact_quadrature =
+          QGaussLobatto<dim - 1>(std::max({fe_pair->multiplier_degree(), u_degree, 1u}) + 1);
 
     hanging_constraints.clear();
     hanging_constraints.reinit(locally_relevant);
@@ -276,8 +279,8 @@ namespace StabilizedLagrangian
     SparsityTools::distribute_sparsity_pattern(
         dsp, locally_owned, mpi_communicator, locally_relevant);
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
-    direct_solver =
-        std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver);
+    direct_solver = std::make_unique<LinearSolvers::DirectSolver>(
+        linear_solver_parameters.direct_solver, linear_solver_parameters.null_pivot_detection);
 
     // initial statuses from the initial configuration: touching points are in contact
     update_pairings();

@@ -2,6 +2,7 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_LinearProblem.h>
 
 #include <cmath>
@@ -10,8 +11,9 @@ namespace StabilizedLagrangian
 {
   namespace LinearSolvers
   {
-    DirectSolver::DirectSolver(const std::string &solver_name)
+    DirectSolver::DirectSolver(const std::string &solver_name, const bool null_pivot_detection)
         : solver_name(solver_name)
+        , null_pivot_detection(null_pivot_detection)
     {
     }
 
@@ -40,6 +42,9 @@ namespace StabilizedLagrangian
           problem = std::make_unique<Epetra_LinearProblem>(&A, &x.trilinos_vector(), &rhs);
           Amesos factory;
           solver.reset(factory.Create(solver_name.c_str(), *problem));
+          if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
+              mumps && null_pivot_detection)
+            mumps->SetICNTL(24, 1);
           if (!solver || solver->SymbolicFactorization() != 0)
             {
               reset();

@@ -25,8 +25,13 @@ namespace StabilizedLagrangian
     class DirectSolver
     {
     public:
-      /** @param solver_name Amesos solver: Amesos_Klu, Amesos_Mumps or Amesos_Superludist */
-      explicit DirectSolver(const std::string &solver_name);
+      /**
+       * @param solver_name Amesos solver: Amesos_Klu, Amesos_Mumps or Amesos_Superludist
+       * @param null_pivot_detection MUMPS only: return one solution of a singular
+       * system (null pivots detected, ICNTL(24)) instead of failing
+       */
+      explicit DirectSolver(const std::string &solver_name,
+                            const bool         null_pivot_detection = false);
       ~DirectSolver();
 
       /**
@@ -44,6 +49,7 @@ namespace StabilizedLagrangian
 
     private:
       const std::string                     solver_name;
+      const bool                            null_pivot_detection;
       std::unique_ptr<Epetra_LinearProblem> problem;
       std::unique_ptr<Amesos_BaseSolver>    solver;
       const void                           *factored_matrix = nullptr;
