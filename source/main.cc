@@ -14,6 +14,7 @@ namespace
   using namespace StabilizedLagrangian;
 
   const char *usage = R"(Usage: stabilized_lagrangian [input.prm]
+       stabilized_lagrangian --inf-sup [N] input.prm
        stabilized_lagrangian --print-parameters [2|3]
        stabilized_lagrangian --help
 
@@ -23,6 +24,9 @@ status, Newton). Without an argument the built-in default scene runs:
 the elastic patin of the seed paper (prm/patin_elastic.prm).
 
   input.prm            run the scene described by this parameter file
+  --inf-sup [N]        numerical inf-sup test of the scene's FE pair on its mesh
+                       and N - 1 global refinements (default N = 4): beta_h per
+                       mesh, printed and written to inf_sup.csv; one MPI rank
   --print-parameters   list every entry with its documentation and default
                        (for dimension 2, or the dimension given)
   --help               this text
@@ -32,12 +36,17 @@ Output goes to the directory of the entry Output/Output directory.
 
   template <int dim>
   int
-  run(const std::string &text, const bool is_file)
+  run(const std::string &text, const bool is_file, const unsigned int inf_sup_meshes)
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
     Parameters::parse(prm, text, is_file);
     ContactProblem<dim> problem(prm);
+    if (inf_sup_meshes > 0)
+      {
+        problem.run_inf_sup_test(inf_sup_meshes);
+        return 0;
+      }
     return problem.run() ? 0 : 2;
   }
 } // namespace
@@ -68,13 +77,32 @@ main(int argc, char *argv[])
             prm.print_parameters(std::cout, ParameterHandler::PRM);
           return 0;
         }
-      if (args.size() > 1 || (!args.empty() && args[0].rfind("-", 0) == 0))
+      std::vector<std::string> files          = args;
+      unsigned int             inf_sup_meshes = 0;
+      if (!files.empty() && files[0] == "--inf-sup")
+        {
+          files.erase(files.begin());
+          inf_sup_meshes = 4;
+          if (files.size() == 2)
+            {
+              if (files[0].find_first_not_of("0123456789") != std::string::npos ||
+                  std::stoi(files[0]) < 1 || std::stoi(files[0]) > 10)
+                throw InputError("--inf-sup N: N must be an integer from 1 to 10, got '" +
+                                 files[0] + "'.");
+              inf_sup_meshes = std::stoi(files[0]);
+              files.erase(files.begin());
+            }
+          if (files.size() != 1)
+            throw InputError(std::string("--inf-sup needs a parameter file.\n") + usage);
+        }
+      if (files.size() > 1 || (!files.empty() && files[0].rfind("-", 0) == 0))
         throw InputError(std::string("Unexpected arguments.\n") + usage);
 
-      const bool         is_file = !args.empty();
-      const std::string  text    = is_file ? args[0] : std::string(default_scene_prm);
+      const bool         is_file = !files.empty();
+      const std::string  text    = is_file ? files[0] : std::string(default_scene_prm);
       const unsigned int dim     = Parameters::read_dimension(text, is_file);
-      return dim == 2 ? run<2>(text, is_file) : run<3>(text, is_file);
+      return dim == 2 ? run<2>(text, is_file, inf_sup_meshes)
+                      : run<3>(text, is_file, inf_sup_meshes);
     }
   catch (const InputError &e)
     {

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """A block pressed uniformly onto a frictionless rigid plane: the contact pressure
 is uniform and equal to the applied pressure, to solver tolerance, for every
-inf-sup stable pair and both contact quadratures (the exact solution is
-linear, so every pair represents it exactly)."""
+inf-sup stable pair (Q1/P1, Q2/P1, Q2/P2) and both contact quadratures, and
+for Q1/P0 in 2D (unstable, but a constant pressure is in its space and its
+system is invertible); the exact solution is linear, so every pair represents
+it exactly. Q1/P2 is singular and left out."""
 import sys
 import sltest
 

@@ -101,15 +101,18 @@ namespace StabilizedLagrangian
                       2,
                       true);
         add_pair<dim>("Q1/P0",
-                      "Q1 displacement, multipliers constant on each boundary face (stable "
-                      "in 2D)",
+                      "Q1 displacement, multipliers constant on each boundary face: violates "
+                      "the inf-sup condition on the same mesh (the face-alternating multiplier "
+                      "is seen only at the ends of Γc, β_h → 0 under refinement), though the "
+                      "system stays invertible",
                       1,
                       0,
                       false);
         add_pair<dim>("Q1/P2",
                       "Q1 displacement, continuous piecewise-quadratic multipliers: richer "
-                      "than the displacement trace, violates the inf-sup condition (for "
-                      "comparison only)",
+                      "than the displacement trace, violates the inf-sup condition (β_h = 0: "
+                      "the Newton system is singular where contact is active; see Linear "
+                      "solver/Null pivot detection)",
                       1,
                       2,
                       true);

@@ -57,6 +57,13 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "setup");
     make_grid();
+    setup_after_refinement();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_after_refinement()
+  {
     setup_dofs();
     setup_contact_points();
     material_history.initialize(triangulation, cell_quadrature.size(), *material);
@@ -155,12 +162,7 @@ namespace StabilizedLagrangian
     newton_constraints.clear();
     newton_constraints.reinit(locally_relevant);
     newton_constraints.merge(hanging_constraints);
-    for (const auto &bc : boundary_conditions.dirichlet)
-      VectorTools::interpolate_boundary_values(dof_handler_u,
-                                               bc.boundary_id,
-                                               Functions::ZeroFunction<dim>(dim),
-                                               newton_constraints,
-                                               bc.components);
+    add_homogeneous_dirichlet_constraints(newton_constraints);
     newton_constraints.close();
 
     system_rhs.reinit(locally_owned, mpi_communicator);
@@ -172,6 +174,19 @@ namespace StabilizedLagrangian
     for (const auto &[row, component] : locally_owned_multiplier_components())
       residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
     residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_homogeneous_dirichlet_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    for (const auto &bc : boundary_conditions.dirichlet)
+      VectorTools::interpolate_boundary_values(dof_handler_u,
+                                               bc.boundary_id,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               constraints,
+                                               bc.components);
   }
 
   template <int dim>

@@ -59,6 +59,15 @@ namespace StabilizedLagrangian
     double             JxW = 0.;
   };
 
+  /** @brief One row of the numerical inf-sup test (ContactProblem::run_inf_sup_test). */
+  struct InfSupRecord
+  {
+    double                  contact_mesh_size      = 0.; ///< largest face diameter on Γc
+    types::global_dof_index displacement_dofs      = 0;
+    types::global_dof_index normal_multiplier_dofs = 0;
+    double                  beta                   = 0.; ///< discrete inf-sup constant β_h
+  };
+
   /**
    * @brief Quasi-static frictional contact of a deformable body with a rigid
    * obstacle, stabilized Lagrangian mixed formulation (DESIGN §2).
@@ -87,6 +96,18 @@ namespace StabilizedLagrangian
     /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points. */
     void
     setup();
+
+    /**
+     * @brief Numerical inf-sup test of the FE pair (source/solver/inf_sup_test.cc):
+     * β_h on the scene's mesh and @p n_meshes − 1 global refinements of it,
+     * printed and written to inf_sup.csv in the output directory. One MPI rank.
+     */
+    void
+    run_inf_sup_test(const unsigned int n_meshes);
+
+    /** @brief β_h of the FE pair on the current mesh (see run_inf_sup_test). */
+    InfSupRecord
+    compute_inf_sup_constant();
 
     /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
@@ -220,10 +241,16 @@ namespace StabilizedLagrangian
     // --- contact_problem.cc ---
     void
     make_grid();
+    /** DoFs, sparsity, contact points and history after the mesh changed. */
+    void
+    setup_after_refinement();
     void
     setup_dofs();
     void
     setup_multiplier_numbering();
+    /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
+    void
+    add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
     void
     setup_contact_points();
     void

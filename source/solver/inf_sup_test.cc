@@ -1,0 +1,188 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace StabilizedLagrangian
+{
+  // The numerical inf-sup test of the displacement / multiplier pair: the
+  // discrete inf-sup constant of the normal trace pairing
+  //
+  //   β_h = inf_μ sup_v ∫Γc μ (v·n) / (‖μ‖_{-1/2,h} ‖v‖_1)
+  //
+  // is the square root of the smallest eigenvalue of S x = β² M x with
+  // S = B K⁻¹ Bᵀ, B_aj = ∫Γc ψ_a (φ_j·n), K the H¹ Gram matrix of the
+  // displacement (∫ ∇φ_i:∇φ_j + φ_i·φ_j, Dirichlet DoFs removed) and M the
+  // multiplier Gram matrix of the mesh-dependent norm
+  // ‖μ‖²_{-1/2,h} = Σ_F h_F ‖μ‖²_{L²(F)}, equivalent to the H^{-1/2}(Γc)
+  // norm on quasi-uniform contact meshes (Chapelle and Bathe's test, with
+  // this norm for the multiplier).
+
+  template <int dim>
+  InfSupRecord
+  ContactProblem<dim>::compute_inf_sup_constant()
+  {
+    AssertThrow(Utilities::MPI::n_mpi_processes(mpi_communicator) == 1,
+                ExcMessage("The inf-sup test runs on one MPI rank."));
+
+    // K: H¹ Gram matrix of the displacement, Dirichlet DoFs constrained
+    AffineConstraints<double> constraints(locally_relevant_u);
+    DoFTools::make_hanging_node_constraints(dof_handler_u, constraints);
+    add_homogeneous_dirichlet_constraints(constraints);
+    constraints.close();
+
+    DynamicSparsityPattern dsp(locally_relevant_u);
+    DoFTools::make_sparsity_pattern(dof_handler_u, dsp, constraints, false);
+    TrilinosWrappers::SparseMatrix gram_u;
+    gram_u.reinit(locally_owned_u, locally_owned_u, dsp, mpi_communicator);
+
+    const FiniteElement<dim> &fe = *fe_u;
+    FEValues<dim>             fe_values(
+        fe, cell_quadrature, update_values | update_gradients | update_JxW_values);
+    const unsigned int        n_dofs = fe.n_dofs_per_cell();
+    std::vector<unsigned int> component(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+    FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
+    std::vector<types::global_dof_index> dofs(n_dofs);
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        cell_matrix = 0.;
+        for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              if (component[i] == component[j])
+                cell_matrix(i, j) += (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q) +
+                                      fe_values.shape_value(i, q) * fe_values.shape_value(j, q)) *
+                                     fe_values.JxW(q);
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(cell_matrix, dofs, gram_u);
+      }
+    gram_u.compress(VectorOperation::add);
+
+    // B (rows: the λ_n DoFs) and M, with a Gauss rule exact for both
+    std::map<types::global_dof_index, unsigned int> normal_row;
+    for (const auto &[row, component] : locally_owned_multiplier_components())
+      if (component == 0)
+        normal_row.emplace(row, normal_row.size());
+    const unsigned int                         n_rows = normal_row.size();
+    std::vector<TrilinosWrappers::MPI::Vector> trace_rows(
+        n_rows, TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
+    LAPACKFullMatrix<double> gram_m(n_rows, n_rows);
+
+    const QGauss<dim - 1> quadrature(
+        std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
+    FaceEvaluator  evaluator(*this, quadrature);
+    Vector<double> cell_row(n_dofs);
+    double         contact_mesh_size = 0.;
+    for (const auto &face : contact_faces)
+      {
+        evaluator.reinit(face, ghosted_solution);
+        const double h    = face.cell->face(face.face_no)->diameter();
+        contact_mesh_size = std::max(contact_mesh_size, h);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            const Tensor<1, dim> normal =
+                obstacle->project(evaluator.u_values.quadrature_point(q)).normal;
+            const double w = evaluator.u_values.JxW(q);
+            for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
+              {
+                const auto row = normal_row.find(evaluator.m_dofs[a]);
+                if (row == normal_row.end())
+                  continue;
+                const double psi_a = evaluator.m_values.shape_value(evaluator.m_local[a], q);
+                for (unsigned int j = 0; j < n_dofs; ++j)
+                  cell_row(j) =
+                      w * psi_a * evaluator.u_values.shape_value(j, q) * normal[component[j]];
+                constraints.distribute_local_to_global(
+                    cell_row, evaluator.u_dofs, trace_rows[row->second]);
+                for (unsigned int b = 0; b < evaluator.m_dofs.size(); ++b)
+                  {
+                    const auto column = normal_row.find(evaluator.m_dofs[b]);
+                    if (column != normal_row.end())
+                      gram_m(row->second, column->second) +=
+                          h * w * psi_a * evaluator.m_values.shape_value(evaluator.m_local[b], q);
+                  }
+              }
+          }
+      }
+
+    // S = B K⁻¹ Bᵀ, one solve per multiplier row
+    LinearSolvers::DirectSolver   solver(linear_solver_parameters.direct_solver);
+    LAPACKFullMatrix<double>      schur(n_rows, n_rows);
+    TrilinosWrappers::MPI::Vector lifted(locally_owned_u, mpi_communicator);
+    for (unsigned int a = 0; a < n_rows; ++a)
+      {
+        trace_rows[a].compress(VectorOperation::add);
+        AssertThrow(solver.solve(gram_u, lifted, trace_rows[a]),
+                    ExcMessage("The inf-sup test could not factorise the H1 Gram matrix."));
+        for (unsigned int b = 0; b <= a; ++b)
+          schur(a, b) = schur(b, a) = lifted * trace_rows[b];
+      }
+
+    // the smallest generalized eigenvalue of S x = β² M x
+    std::vector<Vector<double>> eigenvectors(n_rows, Vector<double>(n_rows));
+    schur.compute_generalized_eigenvalues_symmetric(gram_m, eigenvectors);
+    double smallest = std::numeric_limits<double>::max();
+    for (unsigned int k = 0; k < n_rows; ++k)
+      smallest = std::min(smallest, schur.eigenvalue(k).real());
+
+    InfSupRecord record;
+    record.contact_mesh_size      = contact_mesh_size;
+    record.displacement_dofs      = n_u;
+    record.normal_multiplier_dofs = n_rows;
+    record.beta                   = std::sqrt(std::max(smallest, 0.));
+    return record;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::run_inf_sup_test(const unsigned int n_meshes)
+  {
+    std::filesystem::create_directories(output_parameters.directory);
+    const std::string filename = output_parameters.directory + "/inf_sup.csv";
+    std::ofstream     table(filename);
+    table << "mesh,contact_mesh_size_mm,displacement_dofs,normal_multiplier_dofs,beta\n";
+    pcout << "Inf-sup test of the pair " << contact_parameters.fe_pair
+          << " (normal multiplier in the norm sum_F h_F |mu|^2_L2(F), displacement in H1)\n"
+          << "  mesh   h (mm)   displacement DoFs   multiplier DoFs   beta_h\n";
+    setup();
+    for (unsigned int mesh = 1; mesh <= n_meshes; ++mesh)
+      {
+        if (mesh > 1)
+          {
+            triangulation.refine_global(1);
+            setup_after_refinement();
+          }
+        const InfSupRecord r = compute_inf_sup_constant();
+        table << mesh << ',' << std::setprecision(10) << r.contact_mesh_size << ','
+              << r.displacement_dofs << ',' << r.normal_multiplier_dofs << ',' << r.beta << '\n';
+        pcout << std::setw(6) << mesh << std::setw(9) << std::setprecision(4) << r.contact_mesh_size
+              << std::setw(20) << r.displacement_dofs << std::setw(18) << r.normal_multiplier_dofs
+              << "   " << std::scientific << std::setprecision(4) << r.beta << std::defaultfloat
+              << std::endl;
+      }
+    pcout << "Written to " << filename << "\n";
+  }
+
+  template InfSupRecord
+  ContactProblem<2>::compute_inf_sup_constant();
+  template InfSupRecord
+  ContactProblem<3>::compute_inf_sup_constant();
+  template void
+  ContactProblem<2>::run_inf_sup_test(unsigned int);
+  template void
+  ContactProblem<3>::run_inf_sup_test(unsigned int);
+} // namespace StabilizedLagrangian
