@@ -182,7 +182,10 @@ namespace StabilizedLagrangian
       prm.declare_entry("Maximum step cuts",
                         "5",
                         Patterns::Integer(0, 30),
-                        "A load step that fails is halved and retried up to this many times.");
+                        "A load step that fails is halved and retried, down to the nominal step "
+                        "halved this many times; after a converged step the step doubles back "
+                        "towards the nominal one. A failure at the smallest step ends the run "
+                        "(exit code 2).");
       prm.leave_subsection();
     }
 
@@ -318,6 +321,37 @@ namespace StabilizedLagrangian
     }
 
     void
+    AdaptiveRefinement::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptive refinement");
+      prm.declare_entry("Cycles",
+                        "0",
+                        Patterns::Integer(0, 10),
+                        "Refinement around the active set (no error estimator): after the "
+                        "whole load path is solved, every cell within `Refinement band` cell "
+                        "diameters of a contact point that was in contact at the end of some "
+                        "load step is refined, and the load path is solved again from rest on "
+                        "the new mesh, this many times. The last mesh writes into the output "
+                        "directory, the earlier ones into cycle-N/ below it, and "
+                        "refinement_cycles.csv sums them up.");
+      prm.declare_entry("Refinement band",
+                        "1",
+                        Patterns::Double(0.),
+                        "Distance, in diameters of the cell, from the active contact points "
+                        "within which a cell is refined.");
+      prm.leave_subsection();
+    }
+
+    void
+    AdaptiveRefinement::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptive refinement");
+      cycles = prm.get_integer("Cycles");
+      band   = prm.get_double("Refinement band");
+      prm.leave_subsection();
+    }
+
+    void
     Output::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
@@ -343,6 +377,7 @@ namespace StabilizedLagrangian
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
+      AdaptiveRefinement::declare_parameters(prm);
       Output::declare_parameters(prm);
     }
 

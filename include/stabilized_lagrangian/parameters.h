@@ -129,6 +129,21 @@ namespace StabilizedLagrangian
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * @brief `Adaptive refinement` subsection: refinement around the active
+     * set, solving the whole load path again on each new mesh.
+     */
+    struct AdaptiveRefinement
+    {
+      unsigned int cycles = 0;  ///< solves on refined meshes after the first one
+      double       band   = 1.; ///< width of the refined band, in cell diameters
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     /** @brief `Output` subsection. */
     struct Output
     {

@@ -11,6 +11,26 @@ namespace StabilizedLagrangian
 {
   namespace Geometry
   {
+    namespace
+    {
+      /** Refine @p steps times the cells whose centre lies within @p radius of @p center. */
+      template <int dim>
+      void
+      refine_near(parallel::distributed::Triangulation<dim> &triangulation,
+                  const Point<dim>                          &center,
+                  const double                               radius,
+                  const unsigned int                         steps)
+      {
+        for (unsigned int step = 0; step < steps; ++step)
+          {
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned() && cell->center().distance(center) < radius)
+                cell->set_refine_flag();
+            triangulation.execute_coarsening_and_refinement();
+          }
+      }
+    } // namespace
+
     /**
      * @brief Rectangular block (the patin of seed Fig. 2): x in [−L/2, L/2],
      * height H above the plane y = 0 (2D) or z = 0 (3D), width W in y (3D).
@@ -31,6 +51,19 @@ namespace StabilizedLagrangian
                           "Cells of the coarse mesh along x, (y,) vertical.");
         prm.declare_entry(
             "Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry("Local refinements",
+                          "0",
+                          Patterns::Integer(0, 12),
+                          "Refinements of the cells within `Local refinement radius` of "
+                          "`Local refinement center`, after the uniform ones (hanging nodes).");
+        prm.declare_entry("Local refinement center",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "Centre of the locally refined region (mm).");
+        prm.declare_entry("Local refinement radius",
+                          "0",
+                          Patterns::Double(0.),
+                          "Radius of the locally refined region (mm).");
       }
 
       explicit Block(const ParameterHandler &prm)
@@ -38,7 +71,12 @@ namespace StabilizedLagrangian
           , height(prm.get_double("Height"))
           , width(prm.get_double("Width"))
           , refinements(prm.get_integer("Global refinements"))
+          , local_refinements(prm.get_integer("Local refinements"))
+          , refinement_radius(prm.get_double("Local refinement radius"))
       {
+        const auto coordinates = Utilities::split_string_list(prm.get("Local refinement center"));
+        for (unsigned int d = 0; d < dim; ++d)
+          refinement_center[d] = Utilities::string_to_double(coordinates[d]);
         for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
           subdivisions.push_back(Utilities::string_to_int(s));
         if (!(length > 0. && height > 0. && width > 0.))
@@ -70,11 +108,14 @@ namespace StabilizedLagrangian
                   face->set_boundary_id(renumber.at(face->boundary_id()));
           }
         triangulation.refine_global(refinements);
+        refine_near(triangulation, refinement_center, refinement_radius, local_refinements);
       }
 
     private:
       const double              length, height, width;
-      const unsigned int        refinements;
+      const unsigned int        refinements, local_refinements;
+      const double              refinement_radius;
+      Point<dim>                refinement_center;
       std::vector<unsigned int> subdivisions;
     };
 
@@ -107,8 +148,8 @@ namespace StabilizedLagrangian
                           "20",
                           Patterns::Double(),
                           "Curved faces within this distance (mm) of the lowest point form "
-                          "the candidate contact surface (id 2). Must be smaller than the "
-                          "local refinement radius so that no hanging node lies on it.");
+                          "the candidate contact surface (id 2). When it is larger than the "
+                          "local refinement radius, the contact mesh has hanging nodes.");
       }
 
       explicit HalfBall(const ParameterHandler &prm)
@@ -145,13 +186,7 @@ namespace StabilizedLagrangian
         center[dim - 1] = radius;
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
         triangulation.refine_global(global_refinements);
-        for (unsigned int step = 0; step < local_refinements; ++step)
-          {
-            for (const auto &cell : triangulation.active_cell_iterators())
-              if (cell->is_locally_owned() && cell->center().norm() < refinement_radius)
-                cell->set_refine_flag();
-            triangulation.execute_coarsening_and_refinement();
-          }
+        refine_near(triangulation, Point<dim>(), refinement_radius, local_refinements);
         for (const auto &cell : triangulation.active_cell_iterators())
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary())

@@ -7,10 +7,13 @@ namespace StabilizedLagrangian
   void
   StatisticsWriter::open(const std::string &directory, const unsigned int dim, const bool is_root)
   {
-    root      = is_root;
-    dimension = dim;
+    root              = is_root;
+    dimension         = dim;
+    cumulative_newton = 0;
     if (!root)
       return;
+    statistics_file.close();
+    iterations_file.close();
     statistics_file.open(directory + "/statistics.csv");
     iterations_file.open(directory + "/iterations.csv");
     statistics_file << "step,time,step_size,step_cuts,geometry_iterations,friction_iterations,"

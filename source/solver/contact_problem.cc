@@ -10,6 +10,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
@@ -37,6 +38,7 @@ namespace StabilizedLagrangian
     solver_parameters.parse_parameters(prm);
     linear_solver_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
+    adaptive_refinement.parse_parameters(prm);
 
     geometry = Geometry::create<dim>(prm);
     obstacle = Obstacles::create<dim>(prm);
@@ -102,17 +104,6 @@ namespace StabilizedLagrangian
       require(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
     for (const auto &bc : boundary_conditions.neumann)
       require(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
-
-    // Multiplier DoFs at hanging vertices of Γc would need constraints of their own.
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
-            for (const unsigned int g : cell->face_indices())
-              if (!cell->at_boundary(g) && cell->neighbor_is_coarser(g))
-                throw InputError("The mesh has hanging nodes on the contact boundary; this is "
-                                 "not supported yet. Refine the whole contact zone uniformly.");
   }
 
   template <int dim>
@@ -136,10 +127,12 @@ namespace StabilizedLagrangian
     const IndexSet owned_multipliers    = dof_handler_m.locally_owned_dofs() & contact_block;
     const IndexSet relevant_multipliers = relevant_m & contact_block;
 
+    locally_owned.clear();
     locally_owned.set_size(n_u + n_multipliers);
     locally_owned.add_indices(locally_owned_u);
     locally_owned.add_indices(owned_multipliers, n_u);
     locally_owned.compress();
+    locally_relevant.clear();
     locally_relevant.set_size(n_u + n_multipliers);
     locally_relevant.add_indices(locally_relevant_u);
     locally_relevant.add_indices(relevant_multipliers, n_u);
@@ -158,6 +151,11 @@ namespace StabilizedLagrangian
     hanging_constraints.clear();
     hanging_constraints.reinit(locally_relevant);
     DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
+    add_multiplier_hanging_node_constraints(hanging_constraints);
+    // in 3D, chains of hanging nodes may end on another rank's DoFs
+    hanging_constraints.make_consistent_in_parallel(locally_owned,
+                                                    locally_relevant,
+                                                    mpi_communicator);
     hanging_constraints.close();
     newton_constraints.clear();
     newton_constraints.reinit(locally_relevant);
@@ -174,6 +172,34 @@ namespace StabilizedLagrangian
     for (const auto &[row, component] : locally_owned_multiplier_components())
       residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
     residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_multiplier_hanging_node_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    // Continuity of the multipliers at the hanging vertices (and edges) of Γc
+    // in 3D: the constraints of the trace element on the whole skeleton,
+    // restricted to the Γc block and shifted to the monolithic numbering. The
+    // skeleton's other DoFs are never used.
+    IndexSet relevant_m;
+    DoFTools::extract_locally_relevant_dofs(dof_handler_m, relevant_m);
+    AffineConstraints<double> skeleton(relevant_m);
+    DoFTools::make_hanging_node_constraints(dof_handler_m, skeleton);
+    skeleton.close();
+    for (const auto &line : skeleton.get_lines())
+      {
+        if (line.index >= n_multipliers)
+          continue;
+        Assert(std::all_of(line.entries.begin(),
+                           line.entries.end(),
+                           [&](const auto &entry) { return entry.first < n_multipliers; }),
+               ExcInternalError());
+        constraints.add_line(n_u + line.index);
+        for (const auto &[column, weight] : line.entries)
+          constraints.add_entry(n_u + line.index, n_u + column, weight);
+      }
   }
 
   template <int dim>
@@ -293,6 +319,8 @@ namespace StabilizedLagrangian
       }
     SparsityTools::distribute_sparsity_pattern(
         dsp, locally_owned, mpi_communicator, locally_relevant);
+    // the factorisation refers to the old matrix: release it first
+    direct_solver.reset();
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
     direct_solver = std::make_unique<LinearSolvers::DirectSolver>(
         linear_solver_parameters.direct_solver, linear_solver_parameters.null_pivot_detection);
@@ -676,6 +704,7 @@ namespace StabilizedLagrangian
         return;
       ++counts[1];
       ++counts[point.status() == Contact::Status::stick ? 2 : 3];
+      active_set.push_back(k.position - k.displacement);
       normal_force += k.JxW * point.normal_traction();
       total_force += k.JxW * point.normal_traction() * state.pairing.normal;
       tangential_force +=
@@ -692,6 +721,34 @@ namespace StabilizedLagrangian
     stats.tangential_force          = tangential.norm();
     for (unsigned int d = 0; d < dim; ++d)
       stats.contact_force[d] = total[d];
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refine_around_active_set()
+  {
+    // every rank needs every active point: a cell may lie near another rank's
+    std::vector<Point<dim>> points;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, active_set))
+      points.insert(points.end(), part.begin(), part.end());
+    if (points.empty())
+      {
+        pcout << "  no contact point was in contact: the mesh is refined globally\n";
+        triangulation.refine_global(1);
+        return;
+      }
+    const auto tree = pack_rtree(points);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::vector<Point<dim>> nearest;
+          tree.query(boost::geometry::index::nearest(cell->center(), 1),
+                     std::back_inserter(nearest));
+          if (cell->center().distance(nearest[0]) <=
+              (0.5 + adaptive_refinement.band) * cell->diameter())
+            cell->set_refine_flag();
+        }
+    triangulation.execute_coarsening_and_refinement();
   }
 
   template class ContactProblem<2>;

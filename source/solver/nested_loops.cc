@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <iomanip>
 #include <limits>
 #include <regex>
@@ -23,22 +24,81 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::run()
   {
-    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    const bool        root            = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    const std::string final_directory = output_parameters.directory;
     if (root)
       {
-        std::filesystem::create_directories(output_parameters.directory);
-        std::ofstream(output_parameters.directory + "/parameters.prm") << parameters_used;
+        std::filesystem::create_directories(final_directory);
+        std::ofstream(final_directory + "/parameters.prm") << parameters_used;
       }
     MPI_Barrier(mpi_communicator);
     setup();
-    statistics.open(output_parameters.directory, dim, root);
-
     geometry_loop_needed = !(obstacle->is_flat() && !material->is_finite_strain());
+
+    // Adaptive refinement around the active set: the load path is solved on
+    // each mesh in turn; the last one writes into the output directory.
+    const unsigned int n_cycles = adaptive_refinement.cycles;
+    std::ofstream      cycles_file;
+    if (root && n_cycles > 0)
+      {
+        cycles_file.open(final_directory + "/refinement_cycles.csv");
+        cycles_file << "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
+                       "normal_force_N,wall_time_s\n";
+      }
+    for (unsigned int cycle = 0; cycle <= n_cycles; ++cycle)
+      {
+        if (cycle > 0)
+          {
+            TimerOutput::Scope scope(timer, "setup");
+            refine_around_active_set();
+            setup_after_refinement();
+            time = 0.;
+            pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
+          }
+        output_parameters.directory = cycle < n_cycles
+                                          ? final_directory + "/cycle-" + std::to_string(cycle)
+                                          : final_directory;
+        Timer      cycle_clock;
+        const bool converged = solve_load_path();
+        if (root && n_cycles > 0)
+          cycles_file << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
+                      << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
+                      << std::setprecision(10) << last_normal_force << ','
+                      << cycle_clock.wall_time() << std::endl;
+        if (!converged)
+          return false;
+      }
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::solve_load_path()
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    if (root)
+      std::filesystem::create_directories(output_parameters.directory);
+    statistics.open(output_parameters.directory, dim, root);
+    pvd_records.clear();
+    active_set.clear();
+    timer.reset();
+
     pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
           << " cells, " << n_u << " displacement DoFs + " << n_multipliers
           << " multiplier DoFs on the contact boundary, "
           << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s), "
           << system_matrix.n_nonzero_elements() << " matrix entries\n";
+    const unsigned int hanging_multipliers = Utilities::MPI::sum(
+        static_cast<unsigned int>(std::count_if(hanging_constraints.get_lines().begin(),
+                                                hanging_constraints.get_lines().end(),
+                                                [&](const auto &line) {
+                                                  return line.index >= n_u &&
+                                                         locally_owned.is_element(line.index);
+                                                })),
+        mpi_communicator);
+    if (hanging_multipliers > 0)
+      pcout << "  " << hanging_multipliers
+            << " multiplier DoFs at hanging nodes of the contact boundary\n";
     if (!geometry_loop_needed)
       pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
     if (!friction_law->has_friction())
@@ -48,8 +108,9 @@ namespace StabilizedLagrangian
 
     output_results(0, 0.);
 
-    const double nominal_step = load_stepping.end_time / load_stepping.n_steps;
-    double       step_size    = nominal_step;
+    const double nominal_step  = load_stepping.end_time / load_stepping.n_steps;
+    const double smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
+    double       step_size     = nominal_step;
     unsigned int step = 0, consecutive_cuts = 0;
     Timer        wall_clock;
     while (time < load_stepping.end_time * (1. - 1e-12))
@@ -73,12 +134,15 @@ namespace StabilizedLagrangian
             contact_states = saved_states;
             time           = saved_time;
             update_ghosts();
-            if (consecutive_cuts == load_stepping.max_cuts)
+            // the smallest step is the nominal one halved `Maximum step cuts`
+            // times: a run cannot crawl on with ever smaller steps
+            if (step_size <= smallest_step * (1. + 1e-12))
               {
                 pcout << "ERROR: load step " << step + 1 << " from t = " << time
-                      << " did not converge after " << consecutive_cuts
-                      << " step cuts (Load stepping/Maximum step cuts). The results of the " << step
-                      << " converged steps are in " << output_parameters.directory << ".\n";
+                      << " did not converge after " << load_stepping.max_cuts
+                      << " step cuts (Load stepping/Maximum step cuts), with the step " << step_size
+                      << ". The results of the " << step << " converged steps are in "
+                      << output_parameters.directory << ".\n";
                 return false;
               }
             ++consecutive_cuts;
@@ -94,6 +158,7 @@ namespace StabilizedLagrangian
           TimerOutput::Scope scope(timer, "contact search");
           compute_contact_statistics(stats);
         }
+        last_normal_force = stats.normal_force;
         output_results(step, time);
         step_start      = ghosted_solution;
         stats.wall_time = step_clock.wall_time();
@@ -428,6 +493,7 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                     \
   template bool   ContactProblem<dim>::run();                                                   \
+  template bool   ContactProblem<dim>::solve_load_path();                                       \
   template void   ContactProblem<dim>::write_run_summary(unsigned int, double) const;           \
   template void   ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;   \
   template void   ContactProblem<dim>::apply_dirichlet_values(double);                          \

@@ -53,7 +53,10 @@ namespace StabilizedLagrangian
   class StatisticsWriter
   {
   public:
-    /** @brief Create both files in @p directory and write their headers (rank 0 only). */
+    /**
+     * @brief Create both files in @p directory and write their headers (rank 0
+     * only); closes the previous ones and restarts the Newton count.
+     */
     void
     open(const std::string &directory, const unsigned int dim, const bool is_root);
 

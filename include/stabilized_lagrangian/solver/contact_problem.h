@@ -211,6 +211,9 @@ namespace StabilizedLagrangian
     };
 
     // --- nested_loops.cc: DESIGN §3 ---
+    /** The whole load path on the current mesh, from rest. */
+    bool
+    solve_load_path();
     bool
     solve_load_step(StepStatistics &stats);
     bool
@@ -248,6 +251,9 @@ namespace StabilizedLagrangian
     setup_dofs();
     void
     setup_multiplier_numbering();
+    /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
+    void
+    add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
     /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
     void
     add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
@@ -289,8 +295,12 @@ namespace StabilizedLagrangian
             f(contact_states[face.first_point + q], evaluator.kinematics(q));
         }
     }
+    /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
+    /** Refine the cells near the recorded active set (Adaptive refinement). */
+    void
+    refine_around_active_set();
     /** The point-wise stabilized Lagrangian with the frozen status and threshold of @p state. */
     Contact::PointResponse<dim - 1>
     frozen_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
@@ -313,6 +323,7 @@ namespace StabilizedLagrangian
     Parameters::LoadStepping            load_stepping;
     Parameters::NonlinearSolver         solver_parameters;
     Parameters::LinearSolver            linear_solver_parameters;
+    Parameters::AdaptiveRefinement      adaptive_refinement;
     Parameters::Output                  output_parameters;
 
     std::unique_ptr<Geometry::Interface<dim>>    geometry;
@@ -352,7 +363,10 @@ namespace StabilizedLagrangian
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
 
-    double                                      time = 0.;
+    double time = 0.;
+    /** reference positions of the points in contact at the end of some step on this mesh */
+    std::vector<Point<dim>>                     active_set;
+    double                                      last_normal_force = 0.;
     bool                                        verbose;
     bool                                        geometry_loop_needed = true;
     std::string                                 parameters_used;
