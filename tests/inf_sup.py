@@ -2,7 +2,8 @@
 """The numerical inf-sup test (`--inf-sup N`) separates the stable pairs from
 the unstable ones on the patin block (4 x 2 cells refined 4 times, 1 rank):
 
-- Q1/P1, Q2/P1, Q2/P2 (multipliers no richer than the displacement trace):
+- Q1/P1, Q2/P1, Q2/P2, Q1/P1 coarse (multipliers no richer than the
+  displacement trace):
   β_h stays bounded away from zero — it does not decrease over the last
   refinements and stays above 0.1;
 - Q1/P0 (face-wise constant multipliers on the same mesh): the multiplier
@@ -25,7 +26,7 @@ with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_elastic.pr
 
 def betas(pair):
     text = base.replace("set Finite element pair  = Q1/P1", f"set Finite element pair  = {pair}")
-    out = f"{workdir}/{pair.replace('/', '')}"
+    out = f"{workdir}/{pair.replace('/', '').replace(' ', '_')}"
     os.makedirs(out, exist_ok=True)
     with open(out + "/input.prm", "w") as f:
         f.write(text + sltest.QUIET_OUTPUT)
@@ -37,7 +38,7 @@ def betas(pair):
 
 
 stable = {}
-for pair in ("Q1/P1", "Q2/P1", "Q2/P2"):
+for pair in ("Q1/P1", "Q2/P1", "Q2/P2", "Q1/P1 coarse"):
     b = betas(pair)
     stable[pair] = b
     check(b[-1] >= b[-2] * 0.99 and min(b[-2:]) > 0.1,

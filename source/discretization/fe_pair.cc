@@ -19,10 +19,12 @@ namespace StabilizedLagrangian
     public:
       LagrangeFacePair(const unsigned int displacement_degree,
                        const unsigned int multiplier_degree,
-                       const bool         continuous_multiplier)
+                       const bool         continuous_multiplier,
+                       const bool         coarser_mesh = false)
           : u_degree(displacement_degree)
           , m_degree(multiplier_degree)
           , continuous(continuous_multiplier)
+          , coarse(coarser_mesh)
       {
       }
 
@@ -52,9 +54,15 @@ namespace StabilizedLagrangian
         return m_degree;
       }
 
+      bool
+      multiplier_on_coarser_mesh() const override
+      {
+        return coarse;
+      }
+
     private:
       const unsigned int u_degree, m_degree;
-      const bool         continuous;
+      const bool         continuous, coarse;
     };
 
     namespace
@@ -65,7 +73,8 @@ namespace StabilizedLagrangian
                const std::string &description,
                const unsigned int displacement_degree,
                const unsigned int multiplier_degree,
-               const bool         continuous_multiplier)
+               const bool         continuous_multiplier,
+               const bool         coarser_mesh = false)
       {
         Registry<dim>::add(
             name,
@@ -73,7 +82,7 @@ namespace StabilizedLagrangian
             [](ParameterHandler &) {},
             [=](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
               return std::make_unique<LagrangeFacePair<dim>>(
-                  displacement_degree, multiplier_degree, continuous_multiplier);
+                  displacement_degree, multiplier_degree, continuous_multiplier, coarser_mesh);
             });
       }
 
@@ -99,6 +108,15 @@ namespace StabilizedLagrangian
                       "the displacement trace)",
                       2,
                       2,
+                      true);
+        add_pair<dim>("Q1/P1 coarse",
+                      "Q1 displacement, continuous piecewise-linear multipliers on the "
+                      "contact mesh coarsened once (mesh size 2h: the parents of the contact "
+                      "faces; inf-sup stable, fewer multipliers). Needs a contact boundary "
+                      "refined at least once and without hanging nodes",
+                      1,
+                      1,
+                      true,
                       true);
         add_pair<dim>("Q1/P0",
                       "Q1 displacement, multipliers constant on each boundary face: violates "

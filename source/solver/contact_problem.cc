@@ -152,10 +152,11 @@ namespace StabilizedLagrangian
     hanging_constraints.reinit(locally_relevant);
     DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
     add_multiplier_hanging_node_constraints(hanging_constraints);
+    if (fe_pair->multiplier_on_coarser_mesh())
+      add_multiplier_coarsening_constraints(hanging_constraints);
     // in 3D, chains of hanging nodes may end on another rank's DoFs
-    hanging_constraints.make_consistent_in_parallel(locally_owned,
-                                                    locally_relevant,
-                                                    mpi_communicator);
+    hanging_constraints.make_consistent_in_parallel(
+        locally_owned, locally_relevant, mpi_communicator);
     hanging_constraints.close();
     newton_constraints.clear();
     newton_constraints.reinit(locally_relevant);
@@ -200,6 +201,75 @@ namespace StabilizedLagrangian
         for (const auto &[column, weight] : line.entries)
           constraints.add_entry(n_u + line.index, n_u + column, weight);
       }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_multiplier_coarsening_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    // The multiplier is continuous and multilinear on the parent of each
+    // contact face: the values at the vertices of the children that are not
+    // vertices of the parent are interpolated from the parent's vertices.
+    for (const auto &line : constraints.get_lines())
+      if (line.index >= n_u)
+        throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+                         " needs a contact boundary without hanging nodes.");
+    constexpr unsigned int n_face_vertices = GeometryInfo<dim>::vertices_per_face;
+    const unsigned int     n_components    = fe_m->n_components();
+    for (const auto &cell : dof_handler_m.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+            {
+              if (cell->level() == 0)
+                throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+                                 " needs the contact boundary refined at least once.");
+              const auto coarse_face = cell->parent()->face(f);
+              for (unsigned int c = 0; c < coarse_face->n_children(); ++c)
+                for (unsigned int v = 0; v < n_face_vertices; ++v)
+                  {
+                    // reference coordinates of the child's vertex in the parent face
+                    // (isotropic refinement, children and vertices lexicographic)
+                    std::array<double, dim - 1> xi;
+                    bool                        parent_vertex = true;
+                    for (unsigned int d = 0; d < dim - 1; ++d)
+                      {
+                        xi[d] = 0.5 * (((c >> d) & 1) + ((v >> d) & 1));
+                        parent_vertex &= (xi[d] == 0. || xi[d] == 1.);
+                      }
+                    if (parent_vertex)
+                      continue;
+                    for (unsigned int component = 0; component < n_components; ++component)
+                      {
+                        const types::global_dof_index fine =
+                            coarse_face->child(c)->vertex_dof_index(v, component);
+                        std::vector<std::pair<types::global_dof_index, double>> entries;
+                        for (unsigned int k = 0; k < n_face_vertices; ++k)
+                          {
+                            double weight = 1.;
+                            for (unsigned int d = 0; d < dim - 1; ++d)
+                              weight *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
+                            entries.emplace_back(coarse_face->vertex_dof_index(k, component),
+                                                 weight);
+                          }
+                        // at the edge of Γc a parent face may be only partly in
+                        // Γc: its fine nodes there stay free
+                        const bool inside =
+                            std::all_of(entries.begin(), entries.end(), [&](const auto &entry) {
+                              return entry.first < n_multipliers;
+                            });
+                        if (!inside || fine >= n_multipliers ||
+                            constraints.is_constrained(n_u + fine))
+                          continue;
+                        constraints.add_line(n_u + fine);
+                        for (const auto &[coarse, weight] : entries)
+                          if (weight != 0.)
+                            constraints.add_entry(n_u + fine, n_u + coarse, weight);
+                      }
+                  }
+            }
   }
 
   template <int dim>

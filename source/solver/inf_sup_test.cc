@@ -132,17 +132,44 @@ namespace StabilizedLagrangian
           schur(a, b) = schur(b, a) = lifted * trace_rows[b];
       }
 
+    // restriction to the multiplier space: constrained multipliers (hanging
+    // nodes, coarser multiplier mesh) are combinations of free ones, μ = P μ_free
+    std::vector<unsigned int> free_index(n_rows, numbers::invalid_unsigned_int);
+    unsigned int              n_free = 0;
+    for (const auto &[dof, row] : normal_row)
+      if (!hanging_constraints.is_constrained(dof))
+        free_index[row] = n_free++;
+    FullMatrix<double> prolongation(n_rows, n_free);
+    for (const auto &[dof, row] : normal_row)
+      if (free_index[row] != numbers::invalid_unsigned_int)
+        prolongation(row, free_index[row]) = 1.;
+      else
+        for (const auto &[column, weight] : *hanging_constraints.get_constraint_entries(dof))
+          prolongation(row, free_index[normal_row.at(column)]) += weight;
+    const auto restrict = [&](const LAPACKFullMatrix<double> &full) {
+      LAPACKFullMatrix<double> result(n_free, n_free);
+      for (unsigned int i = 0; i < n_free; ++i)
+        for (unsigned int j = 0; j < n_free; ++j)
+          for (unsigned int a = 0; a < n_rows; ++a)
+            if (prolongation(a, i) != 0.)
+              for (unsigned int b = 0; b < n_rows; ++b)
+                result(i, j) += prolongation(a, i) * full(a, b) * prolongation(b, j);
+      return result;
+    };
+    LAPACKFullMatrix<double> schur_free = restrict(schur);
+    LAPACKFullMatrix<double> gram_free  = restrict(gram_m);
+
     // the smallest generalized eigenvalue of S x = β² M x
-    std::vector<Vector<double>> eigenvectors(n_rows, Vector<double>(n_rows));
-    schur.compute_generalized_eigenvalues_symmetric(gram_m, eigenvectors);
+    std::vector<Vector<double>> eigenvectors(n_free, Vector<double>(n_free));
+    schur_free.compute_generalized_eigenvalues_symmetric(gram_free, eigenvectors);
     double smallest = std::numeric_limits<double>::max();
-    for (unsigned int k = 0; k < n_rows; ++k)
-      smallest = std::min(smallest, schur.eigenvalue(k).real());
+    for (unsigned int k = 0; k < n_free; ++k)
+      smallest = std::min(smallest, schur_free.eigenvalue(k).real());
 
     InfSupRecord record;
     record.contact_mesh_size      = contact_mesh_size;
     record.displacement_dofs      = n_u;
-    record.normal_multiplier_dofs = n_rows;
+    record.normal_multiplier_dofs = n_free;
     record.beta                   = std::sqrt(std::max(smallest, 0.));
     return record;
   }

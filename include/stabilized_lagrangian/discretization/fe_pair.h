@@ -40,6 +40,16 @@ namespace StabilizedLagrangian
       /** @brief Polynomial degree of the multiplier, for the contact quadrature. */
       virtual unsigned int
       multiplier_degree() const = 0;
+
+      /**
+       * @brief Whether the multiplier lives on the contact mesh coarsened once
+       * (the parents of the contact faces) rather than on the contact faces.
+       */
+      virtual bool
+      multiplier_on_coarser_mesh() const
+      {
+        return false;
+      }
     };
 
     /** @brief The registry of FE pairs for dimension @p dim. */

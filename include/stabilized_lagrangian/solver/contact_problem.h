@@ -254,6 +254,9 @@ namespace StabilizedLagrangian
     /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
     void
     add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
+    /** The multiplier of a coarse-mesh pair: multilinear on the parents of the contact faces. */
+    void
+    add_multiplier_coarsening_constraints(AffineConstraints<double> &constraints) const;
     /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
     void
     add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
