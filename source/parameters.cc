@@ -324,16 +324,26 @@ namespace StabilizedLagrangian
     AdaptiveRefinement::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptive refinement");
-      prm.declare_entry("Cycles",
-                        "0",
-                        Patterns::Integer(0, 10),
-                        "Refinement around the active set (no error estimator): after the "
-                        "whole load path is solved, every cell within `Refinement band` cell "
-                        "diameters of a contact point that was in contact at the end of some "
-                        "load step is refined, and the load path is solved again from rest on "
-                        "the new mesh, this many times. The last mesh writes into the output "
-                        "directory, the earlier ones into cycle-N/ below it, and "
-                        "refinement_cycles.csv sums them up.");
+      prm.declare_entry(
+          "Cycles",
+          "0",
+          Patterns::Integer(0, 10),
+          "Adaptive refinement: after the whole load path is solved, the mesh "
+          "is refined by the `Criterion` and the load path is solved again from "
+          "rest on the new mesh, this many times. The last mesh writes into the output "
+          "directory, the earlier ones into cycle-N/ below it, and "
+          "refinement_cycles.csv sums them up.");
+      prm.declare_entry("Criterion",
+                        "active set",
+                        Patterns::Selection("active set|Kelly"),
+                        "active set: refine the cells near the points in contact (below); "
+                        "Kelly: refine the `Refined fraction` of the cells with the largest "
+                        "Kelly indicators (jumps of the displacement gradient across faces), "
+                        "which also follows the stresses below the contact zone.");
+      prm.declare_entry("Refined fraction",
+                        "0.3",
+                        Patterns::Double(0., 1.),
+                        "Kelly: fraction of the cells refined at each cycle.");
       prm.declare_entry("Refinement band",
                         "1",
                         Patterns::Double(0.),
@@ -346,8 +356,10 @@ namespace StabilizedLagrangian
     AdaptiveRefinement::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptive refinement");
-      cycles = prm.get_integer("Cycles");
-      band   = prm.get_double("Refinement band");
+      cycles    = prm.get_integer("Cycles");
+      criterion = prm.get("Criterion") == "Kelly" ? Criterion::kelly : Criterion::active_set;
+      band      = prm.get_double("Refinement band");
+      fraction  = prm.get_double("Refined fraction");
       prm.leave_subsection();
     }
 

@@ -135,8 +135,15 @@ namespace StabilizedLagrangian
      */
     struct AdaptiveRefinement
     {
-      unsigned int cycles = 0;  ///< solves on refined meshes after the first one
-      double       band   = 1.; ///< width of the refined band, in cell diameters
+      enum class Criterion
+      {
+        active_set, ///< refine a band around the points in contact
+        kelly       ///< refine the cells with the largest Kelly error indicators
+      };
+      unsigned int cycles    = 0; ///< solves on refined meshes after the first one
+      Criterion    criterion = Criterion::active_set;
+      double       band      = 1.;  ///< width of the refined band, in cell diameters
+      double       fraction  = 0.3; ///< Kelly: fraction of the cells refined
 
       static void
       declare_parameters(ParameterHandler &prm);

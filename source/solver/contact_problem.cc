@@ -10,6 +10,9 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/distributed/grid_refinement.h>
+
+#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -791,6 +794,30 @@ namespace StabilizedLagrangian
     stats.tangential_force          = tangential.norm();
     for (unsigned int d = 0; d < dim; ++d)
       stats.contact_force[d] = total[d];
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refine_mesh()
+  {
+    if (adaptive_refinement.criterion == Parameters::AdaptiveRefinement::Criterion::active_set)
+      {
+        refine_around_active_set();
+        return;
+      }
+    // Kelly indicators of the displacement of the last converged state
+    TrilinosWrappers::MPI::Vector u_owned(locally_owned_u, mpi_communicator);
+    for (const auto index : locally_owned_u)
+      u_owned(index) = solution(index);
+    u_owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
+    u = u_owned;
+    Vector<float> indicators(triangulation.n_active_cells());
+    KellyErrorEstimator<dim>::estimate(
+        dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
+    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        triangulation, indicators, adaptive_refinement.fraction, 0.);
+    triangulation.execute_coarsening_and_refinement();
   }
 
   template <int dim>

@@ -50,7 +50,7 @@ namespace StabilizedLagrangian
         if (cycle > 0)
           {
             TimerOutput::Scope scope(timer, "setup");
-            refine_around_active_set();
+            refine_mesh();
             setup_after_refinement();
             time = 0.;
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";

@@ -301,7 +301,10 @@ namespace StabilizedLagrangian
     /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
-    /** Refine the cells near the recorded active set (Adaptive refinement). */
+    /** Refine the mesh by the criterion of `Adaptive refinement`. */
+    void
+    refine_mesh();
+    /** Refine the cells near the recorded active set. */
     void
     refine_around_active_set();
     /** The point-wise stabilized Lagrangian with the frozen status and threshold of @p state. */

@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""Every FE pair solves the frictionless Hertz cylinder (prm/hertz_cylinder.prm,
+indentation 0.25 mm, the whole load in one step from rest), with a relative
+L2 error of the pressure profile that decreases at each of three meshes (the
+contact zone refined uniformly) at a rate consistent with the pair:
+
+- the exact pressure has a square-root edge, which limits every stable pair
+  to about first order in L2 whatever its degree (measured: 0.8-1.5 between
+  the first and the last mesh); the check asks for at least 0.6;
+- Q1/P0 violates the inf-sup condition: it still converges in this measure
+  (the profile is the vertex average of face values, which smooths the
+  face-to-face oscillation), but slower and with an error at least twice
+  that of Q1/P1 on the same mesh.
+
+The L2 error: the vertex values interpolated linearly along x against the
+closed form with the run's own force (contrib/benchmark_hertz.py has the
+same measure), integrated with 40 samples per interval."""
+import math
+import os
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+E_star, R = 200000.0 / (1 - 0.3 ** 2), 100.0
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
+    base = f.read()
+
+
+def l2_error(pair, local):
+    text = base.replace("set Local refinements       = 4", f"set Local refinements       = {local}")
+    text += f"""
+subsection Contact
+  set Finite element pair = {pair}
+end
+subsection Boundary conditions
+  subsection Dirichlet 1
+    subsection Displacement
+      set Function constants = delta=0.25
+    end
+  end
+end
+subsection Load stepping
+  set Number of load steps = 1
+end
+"""
+    out = f"{workdir}/{pair.replace('/', '').replace(' ', '_')}-{local}"
+    if not sltest.run_checked(executable, text, out, check, f"{pair} local {local}"):
+        return None
+    P = sltest.read_csv(out + "/output/statistics.csv")[-1]["normal_force_N"]
+    a = math.sqrt(4 * P * R / (math.pi * E_star))
+    p0 = 2 * P / (math.pi * a)
+
+    def exact(x):
+        return p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
+    pts = [(r["x_mm"], r["contact_pressure_MPa"]) for r in sltest.last_profile(out + "/output")]
+    num = den = 0.0
+    for (x0, q0), (x1, q1) in zip(pts, pts[1:]):
+        dx = (x1 - x0) / 40
+        for k in range(40):
+            t = (k + 0.5) / 40
+            x = x0 + t * (x1 - x0)
+            num += dx * ((1 - t) * q0 + t * q1 - exact(x)) ** 2
+            den += dx * exact(x) ** 2
+    return math.sqrt(num / den)
+
+
+meshes = {"Q1/P1": (4, 5, 6), "Q1/P1 coarse": (4, 5, 6), "Q2/P1": (3, 4, 5), "Q2/P2": (3, 4, 5),
+          "Q1/P0": (3, 4, 5)}
+errors = {}
+for pair, levels in meshes.items():
+    e = [l2_error(pair, local) for local in levels]
+    if None in e:
+        continue
+    errors[pair] = dict(zip(levels, e))
+    order = math.log(e[0] / e[-1]) / math.log(2 ** (levels[-1] - levels[0]))
+    minimum = 0.3 if pair == "Q1/P0" else 0.6
+    check(e[0] > e[1] > e[2] and order >= minimum,
+          f"{pair}: L2 errors {', '.join(f'{x:.2%}' for x in e)} (h halved each time), "
+          f"order {order:.2f} >= {minimum}")
+if "Q1/P0" in errors and "Q1/P1" in errors:
+    check(errors["Q1/P0"][5] > 2 * errors["Q1/P1"][5],
+          f"Q1/P0 (unstable) is less accurate than Q1/P1 on the same mesh: "
+          f"{errors['Q1/P0'][5]:.2%} vs {errors['Q1/P1'][5]:.2%}")
+check.finish()
