@@ -34,7 +34,12 @@ import math
 import os
 import subprocess
 
+import sys
+
 import matplotlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hertz_errors import hertz_errors  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -119,44 +124,6 @@ end
           f"{row['newton_iterations']} Newton, {row['wall_time_s']:.2f} s, h = {errors['h_mm']:.3f}, "
           f"a {errors['half_width_error']:.2%}, p0 {errors['peak_error']:.2%}, L2 {errors['l2_error']:.2%}")
     return row
-
-
-def hertz_errors(dim, P, profile):
-    if dim == 2:
-        a_h = math.sqrt(4 * P * R / (math.pi * E_star))
-        p0_h = 2 * P / (math.pi * a_h)
-        pts = [(row["x_mm"], row["contact_pressure_MPa"]) for row in profile]
-    else:
-        a_h = (3 * P * R / (4 * E_star)) ** (1 / 3)
-        p0_h = 3 * P / (2 * math.pi * a_h ** 2)
-        pts = sorted((math.hypot(row["x_mm"], row["y_mm"]), row["contact_pressure_MPa"]) for row in profile)
-
-    def exact(x):
-        return p0_h * math.sqrt(max(0.0, 1 - (x / a_h) ** 2))
-    loaded = [x for x, p in pts if p > 0]
-    reach = max(abs(x) for x in loaded)
-    beyond = min((abs(x) for x, p in pts if p <= 0 and abs(x) > reach), default=reach)
-    a = 0.5 * (reach + beyond)
-    h = beyond - reach
-    p0 = max(p for _, p in pts)
-    if dim == 2:
-        # the computed profile interpolated linearly between the vertices,
-        # against the exact curve, with 40 midpoint samples per interval (the
-        # square-root edge of the exact curve is integrated accurately)
-        num = den = 0.0
-        for (x0, p0_), (x1, p1_) in zip(pts, pts[1:]):
-            dx = (x1 - x0) / 40
-            for k in range(40):
-                t = (k + 0.5) / 40
-                x = x0 + t * (x1 - x0)
-                num += dx * ((1 - t) * p0_ + t * p1_ - exact(x)) ** 2
-                den += dx * exact(x) ** 2
-    else:
-        near = [(x, p) for x, p in pts if x <= 1.5 * a_h]
-        num = sum((p - exact(x)) ** 2 for x, p in near)
-        den = sum(exact(x) ** 2 for x, _ in near)
-    return {"h_mm": h, "half_width_error": abs(a - a_h) / a_h, "peak_error": abs(p0 - p0_h) / p0_h,
-            "l2_error": math.sqrt(num / den), "a_mm": a, "a_hertz_mm": a_h}
 
 
 def slope(xs, ys):

@@ -13,16 +13,18 @@ contact zone refined uniformly) at a rate consistent with the pair:
   that of Q1/P1 on the same mesh.
 
 The L2 error: the vertex values interpolated linearly along x against the
-closed form with the run's own force (contrib/benchmark_hertz.py has the
-same measure), integrated with 40 samples per interval."""
+closed form with the run's own force, integrated with 40 samples per interval
+(contrib/hertz_errors.py, shared with the benchmark)."""
 import math
 import os
 import sys
 import sltest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
+from hertz_errors import hertz_errors  # noqa: E402
+
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
-E_star, R = 200000.0 / (1 - 0.3 ** 2), 100.0
 with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
     base = f.read()
 
@@ -48,21 +50,7 @@ end
     if not sltest.run_checked(executable, text, out, check, f"{pair} local {local}"):
         return None
     P = sltest.read_csv(out + "/output/statistics.csv")[-1]["normal_force_N"]
-    a = math.sqrt(4 * P * R / (math.pi * E_star))
-    p0 = 2 * P / (math.pi * a)
-
-    def exact(x):
-        return p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
-    pts = [(r["x_mm"], r["contact_pressure_MPa"]) for r in sltest.last_profile(out + "/output")]
-    num = den = 0.0
-    for (x0, q0), (x1, q1) in zip(pts, pts[1:]):
-        dx = (x1 - x0) / 40
-        for k in range(40):
-            t = (k + 0.5) / 40
-            x = x0 + t * (x1 - x0)
-            num += dx * ((1 - t) * q0 + t * q1 - exact(x)) ** 2
-            den += dx * exact(x) ** 2
-    return math.sqrt(num / den)
+    return hertz_errors(2, P, sltest.last_profile(out + "/output"))["l2_error"]
 
 
 meshes = {"Q1/P1": (4, 5, 6), "Q1/P1 coarse": (4, 5, 6), "Q2/P1": (3, 4, 5), "Q2/P2": (3, 4, 5),

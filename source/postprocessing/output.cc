@@ -202,13 +202,8 @@ namespace StabilizedLagrangian
 
     if (output_parameters.write_vtu)
       {
-        TrilinosWrappers::MPI::Vector u_owned(locally_owned_u, mpi_communicator);
-        for (const auto index : locally_owned_u)
-          u_owned(index) = solution(index);
-        u_owned.compress(VectorOperation::insert);
-        TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
-        u = u_owned;
-        TrilinosWrappers::MPI::Vector fields_ghosted(
+        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+        TrilinosWrappers::MPI::Vector       fields_ghosted(
             field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
         fields_ghosted = fields;
 

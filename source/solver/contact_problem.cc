@@ -797,6 +797,19 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
+  TrilinosWrappers::MPI::Vector
+  ContactProblem<dim>::ghosted_displacement() const
+  {
+    TrilinosWrappers::MPI::Vector u_owned(locally_owned_u, mpi_communicator);
+    for (const auto index : locally_owned_u)
+      u_owned(index) = solution(index);
+    u_owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
+    u = u_owned;
+    return u;
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::refine_mesh()
   {
@@ -806,13 +819,8 @@ namespace StabilizedLagrangian
         return;
       }
     // Kelly indicators of the displacement of the last converged state
-    TrilinosWrappers::MPI::Vector u_owned(locally_owned_u, mpi_communicator);
-    for (const auto index : locally_owned_u)
-      u_owned(index) = solution(index);
-    u_owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
-    u = u_owned;
-    Vector<float> indicators(triangulation.n_active_cells());
+    const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+    Vector<float>                       indicators(triangulation.n_active_cells());
     KellyErrorEstimator<dim>::estimate(
         dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
     parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(

@@ -301,6 +301,9 @@ namespace StabilizedLagrangian
     /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
+    /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
+    TrilinosWrappers::MPI::Vector
+    ghosted_displacement() const;
     /** Refine the mesh by the criterion of `Adaptive refinement`. */
     void
     refine_mesh();
