@@ -345,10 +345,11 @@ namespace StabilizedLagrangian
                         Patterns::Double(0., 1.),
                         "Kelly: fraction of the cells refined at each cycle.");
       prm.declare_entry("Refinement band",
-                        "1",
+                        "0.5",
                         Patterns::Double(0.),
-                        "Distance, in diameters of the cell, from the active contact points "
-                        "within which a cell is refined.");
+                        "active set: cells closer to a point in contact than this fraction of "
+                        "the active zone's size (the diameter of its bounding box), plus half "
+                        "their own diameter, are refined.");
       prm.leave_subsection();
     }
 

@@ -142,7 +142,7 @@ namespace StabilizedLagrangian
       };
       unsigned int cycles    = 0; ///< solves on refined meshes after the first one
       Criterion    criterion = Criterion::active_set;
-      double       band      = 1.;  ///< width of the refined band, in cell diameters
+      double       band      = 0.5; ///< width of the refined band, in active-zone sizes
       double       fraction  = 0.3; ///< Kelly: fraction of the cells refined
 
       static void

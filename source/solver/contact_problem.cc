@@ -1,3 +1,4 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -842,6 +843,13 @@ namespace StabilizedLagrangian
         triangulation.refine_global(1);
         return;
       }
+    // the band scales with the size of the active zone (its bounding box's
+    // diameter), so the material below the contact, where the stresses vary
+    // over that size, is refined too; the half cell diameter keeps the cells
+    // that contain active points
+    const auto   box = BoundingBox<dim>(points);
+    const double zone_size =
+        box.get_boundary_points().first.distance(box.get_boundary_points().second);
     const auto tree = pack_rtree(points);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -850,7 +858,7 @@ namespace StabilizedLagrangian
           tree.query(boost::geometry::index::nearest(cell->center(), 1),
                      std::back_inserter(nearest));
           if (cell->center().distance(nearest[0]) <=
-              (0.5 + adaptive_refinement.band) * cell->diameter())
+              adaptive_refinement.band * zone_size + 0.5 * cell->diameter())
             cell->set_refine_flag();
         }
     triangulation.execute_coarsening_and_refinement();
