@@ -136,61 +136,74 @@ namespace StabilizedLagrangian
     sums.reinit(field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator, true);
     TrilinosWrappers::MPI::Vector counts(sums);
 
-    const QTrapezoid<dim - 1>                              vertex_quadrature;
-    FaceEvaluator                                          evaluator(*this, vertex_quadrature);
-    std::map<types::global_dof_index, std::vector<double>> profile;
+    // the state of the converged iterate, evaluated afresh at a point:
+    // pressure, tangential traction, gap, slip increment, status
+    const auto point_values = [&](const ContactKinematics<dim> &k) {
+      ContactPointState<dim> state;
+      state.pairing    = obstacle->project(k.position);
+      const double gap = state.pairing.gap(k.position);
+      state.in_contact = Contact::is_in_contact(
+          Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
+      state.friction_threshold = friction_law->threshold(k.contact_pressure);
+      const auto point         = frozen_response(state, k);
+
+      std::vector<double> values;
+      values.push_back(point.normal_traction());
+      const Tensor<1, dim> traction =
+          state.pairing.from_tangential_components(point.tangential_traction());
+      const Tensor<1, dim> slip = state.pairing.from_tangential_components(
+          state.pairing.tangential_components(k.step_increment));
+      for (unsigned int d = 0; d < dim; ++d)
+        values.push_back(traction[d]);
+      values.push_back(gap);
+      for (unsigned int d = 0; d < dim; ++d)
+        values.push_back(slip[d]);
+      values.push_back(static_cast<double>(point.status()));
+      return values;
+    };
+
+    const QTrapezoid<dim - 1> vertex_quadrature;
+    FaceEvaluator             evaluator(*this, vertex_quadrature);
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
             &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
+        const auto vertex_face = field_cell->face(face.face_no);
         for (unsigned int q = 0; q < vertex_quadrature.size(); ++q)
           {
-            const ContactKinematics<dim> k      = evaluator.kinematics(q);
-            unsigned int                 vertex = 0;
+            unsigned int vertex = 0;
             for (unsigned int v = 1; v < GeometryInfo<dim>::vertices_per_face; ++v)
-              if (field_cell->face(face.face_no)
-                      ->vertex(v)
-                      .distance(evaluator.u_values.quadrature_point(q)) <
-                  field_cell->face(face.face_no)
-                      ->vertex(vertex)
-                      .distance(evaluator.u_values.quadrature_point(q)))
+              if (vertex_face->vertex(v).distance(evaluator.u_values.quadrature_point(q)) <
+                  vertex_face->vertex(vertex).distance(evaluator.u_values.quadrature_point(q)))
                 vertex = v;
-
-            // the state of the converged iterate, evaluated afresh at the vertex
-            ContactPointState<dim> state;
-            state.pairing    = obstacle->project(k.position);
-            const double gap = state.pairing.gap(k.position);
-            state.in_contact = Contact::is_in_contact(
-                Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
-            state.friction_threshold = friction_law->threshold(k.contact_pressure);
-            const auto point         = frozen_response(state, k);
-
-            std::vector<double> values;
-            values.push_back(point.normal_traction());
-            const Tensor<1, dim> traction =
-                state.pairing.from_tangential_components(point.tangential_traction());
-            const Tensor<1, dim> slip = state.pairing.from_tangential_components(
-                state.pairing.tangential_components(k.step_increment));
-            for (unsigned int d = 0; d < dim; ++d)
-              values.push_back(traction[d]);
-            values.push_back(gap);
-            for (unsigned int d = 0; d < dim; ++d)
-              values.push_back(slip[d]);
-            values.push_back(static_cast<double>(point.status()));
-
-            const auto vertex_face = field_cell->face(face.face_no);
+            const std::vector<double> values = point_values(evaluator.kinematics(q));
             for (unsigned int c = 0; c < n_fields; ++c)
               {
                 const auto index = vertex_face->vertex_dof_index(vertex, c);
                 sums(index) += values[c];
                 counts(index) += 1.;
               }
-            std::vector<double> row;
+          }
+      }
+
+    // The profile: the nodes of the face (Gauss-Lobatto points of the larger
+    // of the two degrees: vertices for Q1/P1, also midsides for quadratic
+    // pairs), in reference coordinates.
+    std::vector<double>          profile;
+    const QGaussLobatto<dim - 1> node_quadrature(
+        std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
+    FaceEvaluator node_evaluator(*this, node_quadrature);
+    for (const auto &face : contact_faces)
+      {
+        node_evaluator.reinit(face, ghosted_solution);
+        for (unsigned int q = 0; q < node_quadrature.size(); ++q)
+          {
+            const Point<dim> &X = node_evaluator.u_values.quadrature_point(q);
             for (unsigned int d = 0; d < dim; ++d)
-              row.push_back(vertex_face->vertex(vertex)[d]);
-            row.insert(row.end(), values.begin(), values.end());
-            profile[vertex_face->vertex_dof_index(vertex, 0)] = row;
+              profile.push_back(X[d]);
+            const std::vector<double> values = point_values(node_evaluator.kinematics(q));
+            profile.insert(profile.end(), values.begin(), values.end());
           }
       }
     sums.compress(VectorOperation::add);
@@ -256,21 +269,21 @@ namespace StabilizedLagrangian
 
     if (output_parameters.write_profiles && step > 0)
       {
-        std::vector<double> flat;
-        for (const auto &[key, row] : profile)
-          {
-            flat.push_back(key);
-            flat.insert(flat.end(), row.begin(), row.end());
-          }
-        const auto gathered = Utilities::MPI::gather(mpi_communicator, flat, 0);
+        const auto gathered = Utilities::MPI::gather(mpi_communicator, profile, 0);
         if (root)
           {
-            const unsigned int                                     row_size = 1 + dim + n_fields;
-            std::map<types::global_dof_index, std::vector<double>> rows;
+            // one row per node: faces sharing a node give it once (coordinates
+            // rounded to 1e-9 mm identify it)
+            const unsigned int                                 row_size = dim + n_fields;
+            std::map<std::vector<double>, std::vector<double>> rows;
             for (const auto &part : gathered)
               for (unsigned int r = 0; r + row_size <= part.size(); r += row_size)
-                rows[static_cast<types::global_dof_index>(part[r])] =
-                    std::vector<double>(part.begin() + r + 1, part.begin() + r + row_size);
+                {
+                  std::vector<double> key(part.begin() + r, part.begin() + r + dim);
+                  for (double &x : key)
+                    x = std::round(x * 1e9) / 1e9;
+                  rows[key] = std::vector<double>(part.begin() + r, part.begin() + r + row_size);
+                }
             std::vector<std::vector<double>> sorted;
             for (auto &entry : rows)
               sorted.push_back(entry.second);
