@@ -18,14 +18,9 @@ refinement around the active set, and writes into doc/:
   benchmark_hertz_profiles.png
 
 Errors are against the closed form of Hertz computed with the run's own
-normal force P (plane strain: a = sqrt(4PR/(pi E*)), p0 = 2P/(pi a); sphere:
-a = (3PR/(4E*))^(1/3), p0 = 3P/(2 pi a^2)): the half-width (midpoint between
-the last loaded and the first unloaded vertex), the peak nodal pressure, and
-the relative L2 error of the pressure profile (2D: the vertex values
-interpolated linearly along x against the exact curve, integrated with 40
-samples per interval; 3D: root mean square of the nodal errors over the
-vertices within 1.5 a). The closed
-form is for a half-space: the finite cylinder and ball differ from it by
+normal force P (contrib/hertz_errors.py: half-width, peak nodal pressure,
+relative L2 error of the nodal pressure profile). The closed form is for a
+half-space: the finite cylinder and ball differ from it by
 O((a/R)^2), so the indentation is chosen small (2D: 0.25 mm, a/R ~ 0.035;
 3D: 1 mm, a/R ~ 0.1, which a coarser 3D mesh can still resolve)."""
 import argparse
@@ -226,7 +221,7 @@ for ax, row, title in zip(axes, (stable, unstable, singular),
     ps = [p["contact_pressure_MPa"] for p in row["profile"]]
     a_h = row["a_hertz_mm"]
     p0_h = a_h * E_star / (2 * R)  # 2P/(pi a) with a^2 = 4PR/(pi E*)
-    ax.plot(xs, ps, ".-", lw=0.8, label="computed (vertices)")
+    ax.plot(xs, ps, ".-", lw=0.8, label="computed (nodes)")
     grid = [x / 200 * 2 * a_h - a_h for x in range(201)]
     ax.plot(grid, [p0_h * math.sqrt(max(0, 1 - (x / a_h) ** 2)) for x in grid], "k-", lw=1, label="Hertz")
     ax.set_xlim(-1.6 * a_h, 1.6 * a_h)

@@ -4,11 +4,12 @@ tests/hertz_pairs.py).
 
 Plane strain (dim = 2): a = sqrt(4PR/(pi E*)), p0 = 2P/(pi a); sphere (dim = 3):
 a = (3PR/(4E*))^(1/3), p0 = 3P/(2 pi a^2); p(r) = p0 sqrt(1 - r^2/a^2).
-Half-width: midpoint between the last loaded and the first unloaded vertex.
-Peak: the largest nodal pressure. L2 (2D): the vertex values interpolated
-linearly along x against the exact curve, 40 samples per interval, so the
-square-root edge is integrated accurately; 3D: root mean square of the nodal
-errors over the vertices within 1.5 a."""
+The profile has a row per node of the contact faces (vertices, and midsides
+for quadratic pairs). Half-width: midpoint between the last loaded and the
+first unloaded node. Peak: the largest nodal pressure. L2 (2D): the nodal
+values interpolated linearly along x against the exact curve, 40 samples per
+interval, so the square-root edge is integrated accurately; 3D: root mean
+square of the nodal errors over the nodes within 1.5 a."""
 import math
 
 

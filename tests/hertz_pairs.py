@@ -8,11 +8,11 @@ contact zone refined uniformly) at a rate consistent with the pair:
   to about first order in L2 whatever its degree (measured: 0.8-1.5 between
   the first and the last mesh); the check asks for at least 0.6;
 - Q1/P0 violates the inf-sup condition: it still converges in this measure
-  (the profile is the vertex average of face values, which smooths the
-  face-to-face oscillation), but slower and with an error at least twice
-  that of Q1/P1 on the same mesh.
+  (its profile holds, at each vertex, the value of one of the two faces
+  that share it), but slower and with an error at least twice that of
+  Q1/P1 on the same mesh.
 
-The L2 error: the vertex values interpolated linearly along x against the
+The L2 error: the nodal values interpolated linearly along x against the
 closed form with the run's own force, integrated with 40 samples per interval
 (contrib/hertz_errors.py, shared with the benchmark)."""
 import math
