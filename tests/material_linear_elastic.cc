@@ -4,6 +4,8 @@
 
 #include <stabilized_lagrangian/materials/linear_elastic.h>
 
+#include "material_test_tools.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -14,26 +16,7 @@ using namespace StabilizedLagrangian;
 
 namespace
 {
-  int failures = 0;
-
-  void
-  check(const bool ok, const std::string &what, const double value)
-  {
-    std::cout << (ok ? "ok    " : "FAIL  ") << what << ": " << value << std::endl;
-    failures += !ok;
-  }
-
-  template <int dim>
-  Tensor<2, dim>
-  random_gradient(std::mt19937 &rng, const double size)
-  {
-    std::uniform_real_distribution<double> dist(-size, size);
-    Tensor<2, dim>                         h;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = 0; j < dim; ++j)
-        h[i][j] = dist(rng);
-    return h;
-  }
+  using namespace MaterialTestTools;
 
   template <int dim>
   void
@@ -104,6 +87,5 @@ main()
   test_finite_differences<2>();
   test_finite_differences<3>();
   test_closed_form();
-  std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
-  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return summary();
 }
