@@ -34,7 +34,7 @@ import sys
 import matplotlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hertz_errors import hertz_errors  # noqa: E402
+from hertz_errors import hertz_errors, hertz_scene  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -57,25 +57,7 @@ def read_csv(path):
 
 
 def run(dim, pair, local, cycles=0, delta=None, null_pivots=False, profile_name=None, criterion="active set"):
-    name = "hertz_cylinder" if dim == 2 else "hertz_sphere"
-    with open(os.path.join(root, "prm", name + ".prm")) as f:
-        text = f.read()
-    default_local = "4" if dim == 2 else "3"
-    text = text.replace(f"set Local refinements       = {default_local}", f"set Local refinements       = {local}")
-    text += f"""
-subsection Contact
-  set Finite element pair = {pair}
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    subsection Displacement
-      set Function constants = delta={delta}
-    end
-  end
-end
-subsection Load stepping
-  set Number of load steps = 1
-end
+    text = hertz_scene(dim, pair, local, delta) + f"""
 subsection Adaptive refinement
   set Cycles = {cycles}
   set Criterion = {criterion}

@@ -1,6 +1,6 @@
-"""Errors of a computed contact pressure profile against Hertz's closed form,
-with the run's own normal force P (shared by contrib/benchmark_hertz.py and
-tests/hertz_pairs.py).
+"""The Hertz scenes with a given pair and mesh, and the errors of a computed
+contact pressure profile against Hertz's closed form with the run's own
+normal force P (shared by contrib/benchmark_hertz.py and tests/hertz_pairs.py).
 
 Plane strain (dim = 2): a = sqrt(4PR/(pi E*)), p0 = 2P/(pi a); sphere (dim = 3):
 a = (3PR/(4E*))^(1/3), p0 = 3P/(2 pi a^2); p(r) = p0 sqrt(1 - r^2/a^2).
@@ -11,6 +11,36 @@ values interpolated linearly along x against the exact curve, 40 samples per
 interval, so the square-root edge is integrated accurately; 3D: root mean
 square of the nodal errors over the nodes within 1.5 a."""
 import math
+import os
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+
+
+def hertz_scene(dim, pair, local_refinements, delta):
+    """The text of prm/hertz_cylinder.prm (dim 2) or prm/hertz_sphere.prm (dim 3)
+    with the FE pair, the local refinements of the contact zone, the
+    indentation delta, and the whole load in one step."""
+    name = "hertz_cylinder" if dim == 2 else "hertz_sphere"
+    with open(os.path.join(ROOT, "prm", name + ".prm")) as f:
+        text = f.read()
+    default_local = "4" if dim == 2 else "3"
+    text = text.replace(f"set Local refinements       = {default_local}",
+                        f"set Local refinements       = {local_refinements}")
+    return text + f"""
+subsection Contact
+  set Finite element pair = {pair}
+end
+subsection Boundary conditions
+  subsection Dirichlet 1
+    subsection Displacement
+      set Function constants = delta={delta}
+    end
+  end
+end
+subsection Load stepping
+  set Number of load steps = 1
+end
+"""
 
 
 def hertz_errors(dim, P, profile, E=200000.0, nu=0.3, R=100.0):

@@ -21,31 +21,14 @@ import sys
 import sltest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
-from hertz_errors import hertz_errors  # noqa: E402
+from hertz_errors import hertz_errors, hertz_scene  # noqa: E402
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
-with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
-    base = f.read()
 
 
 def l2_error(pair, local):
-    text = base.replace("set Local refinements       = 4", f"set Local refinements       = {local}")
-    text += f"""
-subsection Contact
-  set Finite element pair = {pair}
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    subsection Displacement
-      set Function constants = delta=0.25
-    end
-  end
-end
-subsection Load stepping
-  set Number of load steps = 1
-end
-"""
+    text = hertz_scene(2, pair, local, 0.25)
     out = f"{workdir}/{pair.replace('/', '').replace(' ', '_')}-{local}"
     if not sltest.run_checked(executable, text, out, check, f"{pair} local {local}"):
         return None

@@ -162,48 +162,36 @@ namespace StabilizedLagrangian
       return values;
     };
 
-    const QTrapezoid<dim - 1> vertex_quadrature;
-    FaceEvaluator             evaluator(*this, vertex_quadrature);
+    // One pass over the nodes of the contact faces (Gauss-Lobatto points of
+    // the larger of the two degrees: the vertices for Q1/P1, also the
+    // midsides for quadratic pairs): every node goes into the profile, in
+    // reference coordinates; the vertices also into the vertex fields.
+    std::vector<double>          profile;
+    const QGaussLobatto<dim - 1> node_quadrature(
+        std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
+    FaceEvaluator evaluator(*this, node_quadrature);
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
             &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
-        const auto vertex_face = field_cell->face(face.face_no);
-        for (unsigned int q = 0; q < vertex_quadrature.size(); ++q)
-          {
-            unsigned int vertex = 0;
-            for (unsigned int v = 1; v < GeometryInfo<dim>::vertices_per_face; ++v)
-              if (vertex_face->vertex(v).distance(evaluator.u_values.quadrature_point(q)) <
-                  vertex_face->vertex(vertex).distance(evaluator.u_values.quadrature_point(q)))
-                vertex = v;
-            const std::vector<double> values = point_values(evaluator.kinematics(q));
-            for (unsigned int c = 0; c < n_fields; ++c)
-              {
-                const auto index = vertex_face->vertex_dof_index(vertex, c);
-                sums(index) += values[c];
-                counts(index) += 1.;
-              }
-          }
-      }
-
-    // The profile: the nodes of the face (Gauss-Lobatto points of the larger
-    // of the two degrees: vertices for Q1/P1, also midsides for quadratic
-    // pairs), in reference coordinates.
-    std::vector<double>          profile;
-    const QGaussLobatto<dim - 1> node_quadrature(
-        std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
-    FaceEvaluator node_evaluator(*this, node_quadrature);
-    for (const auto &face : contact_faces)
-      {
-        node_evaluator.reinit(face, ghosted_solution);
+        const auto   vertex_face = field_cell->face(face.face_no);
+        const double tolerance   = 1e-10 * vertex_face->diameter();
         for (unsigned int q = 0; q < node_quadrature.size(); ++q)
           {
-            const Point<dim> &X = node_evaluator.u_values.quadrature_point(q);
+            const Point<dim>         &X      = evaluator.u_values.quadrature_point(q);
+            const std::vector<double> values = point_values(evaluator.kinematics(q));
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
-            const std::vector<double> values = point_values(node_evaluator.kinematics(q));
             profile.insert(profile.end(), values.begin(), values.end());
+            for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_face; ++v)
+              if (vertex_face->vertex(v).distance(X) < tolerance)
+                for (unsigned int c = 0; c < n_fields; ++c)
+                  {
+                    const auto index = vertex_face->vertex_dof_index(v, c);
+                    sums(index) += values[c];
+                    counts(index) += 1.;
+                  }
           }
       }
     sums.compress(VectorOperation::add);

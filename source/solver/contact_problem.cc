@@ -77,6 +77,31 @@ namespace StabilizedLagrangian
 
   namespace
   {
+    /**
+     * Multilinear weights of the vertices of a face at vertex @p v of its
+     * child @p c (isotropic refinement, children and vertices numbered
+     * lexicographically); empty when that vertex is a vertex of the face.
+     */
+    template <int dim>
+    std::vector<double>
+    child_vertex_weights(const unsigned int c, const unsigned int v)
+    {
+      std::array<double, dim - 1> xi;
+      bool                        face_vertex = true;
+      for (unsigned int d = 0; d < dim - 1; ++d)
+        {
+          xi[d] = 0.5 * (((c >> d) & 1) + ((v >> d) & 1));
+          face_vertex &= (xi[d] == 0. || xi[d] == 1.);
+        }
+      if (face_vertex)
+        return {};
+      std::vector<double> weights(GeometryInfo<dim>::vertices_per_face, 1.);
+      for (unsigned int k = 0; k < weights.size(); ++k)
+        for (unsigned int d = 0; d < dim - 1; ++d)
+          weights[k] *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
+      return weights;
+    }
+
     std::string
     list_ids(const std::set<types::boundary_id> &ids)
     {
@@ -224,8 +249,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_m.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+          if (is_contact_face(cell, f))
             {
               if (cell->level() == 0)
                 throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
@@ -234,43 +258,24 @@ namespace StabilizedLagrangian
               for (unsigned int c = 0; c < coarse_face->n_children(); ++c)
                 for (unsigned int v = 0; v < n_face_vertices; ++v)
                   {
-                    // reference coordinates of the child's vertex in the parent face
-                    // (isotropic refinement, children and vertices lexicographic)
-                    std::array<double, dim - 1> xi;
-                    bool                        parent_vertex = true;
-                    for (unsigned int d = 0; d < dim - 1; ++d)
-                      {
-                        xi[d] = 0.5 * (((c >> d) & 1) + ((v >> d) & 1));
-                        parent_vertex &= (xi[d] == 0. || xi[d] == 1.);
-                      }
-                    if (parent_vertex)
-                      continue;
-                    for (unsigned int component = 0; component < n_components; ++component)
+                    const std::vector<double> weights = child_vertex_weights<dim>(c, v);
+                    for (unsigned int component = 0; component < n_components && !weights.empty();
+                         ++component)
                       {
                         const types::global_dof_index fine =
                             coarse_face->child(c)->vertex_dof_index(v, component);
-                        std::vector<std::pair<types::global_dof_index, double>> entries;
+                        std::vector<types::global_dof_index> coarse(n_face_vertices);
                         for (unsigned int k = 0; k < n_face_vertices; ++k)
-                          {
-                            double weight = 1.;
-                            for (unsigned int d = 0; d < dim - 1; ++d)
-                              weight *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
-                            entries.emplace_back(coarse_face->vertex_dof_index(k, component),
-                                                 weight);
-                          }
+                          coarse[k] = coarse_face->vertex_dof_index(k, component);
                         // at the edge of Γc a parent face may be only partly in
                         // Γc: its fine nodes there stay free
-                        const bool inside =
-                            std::all_of(entries.begin(), entries.end(), [&](const auto &entry) {
-                              return entry.first < n_multipliers;
-                            });
-                        if (!inside || fine >= n_multipliers ||
-                            constraints.is_constrained(n_u + fine))
+                        if (fine >= n_multipliers || constraints.is_constrained(n_u + fine) ||
+                            *std::max_element(coarse.begin(), coarse.end()) >= n_multipliers)
                           continue;
                         constraints.add_line(n_u + fine);
-                        for (const auto &[coarse, weight] : entries)
-                          if (weight != 0.)
-                            constraints.add_entry(n_u + fine, n_u + coarse, weight);
+                        for (unsigned int k = 0; k < n_face_vertices; ++k)
+                          if (weights[k] != 0.)
+                            constraints.add_entry(n_u + fine, n_u + coarse[k], weights[k]);
                       }
                   }
             }
@@ -300,8 +305,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_m.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+          if (is_contact_face(cell, f))
             {
               cell->get_dof_indices(dofs);
               for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -344,8 +348,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_m.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+          if (is_contact_face(cell, f))
             {
               cell->get_dof_indices(dofs);
               for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -364,8 +367,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()))
+          if (is_contact_face(cell, f))
             {
               contact_faces.push_back(ContactFace{cell, f, n_points});
               n_points += contact_quadrature.size();
@@ -511,11 +513,12 @@ namespace StabilizedLagrangian
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
-    // every rank learns that one of them met an inadmissible state
-    const auto messages = Utilities::MPI::all_gather(mpi_communicator, inadmissible_state);
-    for (const auto &message : messages)
-      if (!message.empty())
-        inadmissible_state = message;
+    // every rank learns that one of them met an inadmissible state (the
+    // messages are gathered only then)
+    if (Utilities::MPI::max(static_cast<int>(!inadmissible_state.empty()), mpi_communicator) == 1)
+      for (const auto &message : Utilities::MPI::all_gather(mpi_communicator, inadmissible_state))
+        if (!message.empty())
+          inadmissible_state = message;
   }
 
   template <int dim>

@@ -80,7 +80,7 @@ namespace StabilizedLagrangian
     const unsigned int                         n_rows = normal_row.size();
     std::vector<TrilinosWrappers::MPI::Vector> trace_rows(
         n_rows, TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
-    LAPACKFullMatrix<double> gram_m(n_rows, n_rows);
+    FullMatrix<double> gram_m(n_rows, n_rows);
 
     const QGauss<dim - 1> quadrature(
         std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
@@ -121,7 +121,7 @@ namespace StabilizedLagrangian
 
     // S = B K⁻¹ Bᵀ, one solve per multiplier row
     LinearSolvers::DirectSolver   solver(linear_solver_parameters.direct_solver);
-    LAPACKFullMatrix<double>      schur(n_rows, n_rows);
+    FullMatrix<double>            schur(n_rows, n_rows);
     TrilinosWrappers::MPI::Vector lifted(locally_owned_u, mpi_communicator);
     for (unsigned int a = 0; a < n_rows; ++a)
       {
@@ -146,15 +146,13 @@ namespace StabilizedLagrangian
       else
         for (const auto &[column, weight] : *hanging_constraints.get_constraint_entries(dof))
           prolongation(row, free_index[normal_row.at(column)]) += weight;
-    const auto restrict = [&](const LAPACKFullMatrix<double> &full) {
-      LAPACKFullMatrix<double> result(n_free, n_free);
-      for (unsigned int i = 0; i < n_free; ++i)
-        for (unsigned int j = 0; j < n_free; ++j)
-          for (unsigned int a = 0; a < n_rows; ++a)
-            if (prolongation(a, i) != 0.)
-              for (unsigned int b = 0; b < n_rows; ++b)
-                result(i, j) += prolongation(a, i) * full(a, b) * prolongation(b, j);
-      return result;
+    // Pᵀ A P
+    const auto restrict = [&](const FullMatrix<double> &full) {
+      FullMatrix<double> result(n_free, n_free);
+      result.triple_product(full, prolongation, prolongation, true, false);
+      LAPACKFullMatrix<double> lapack(n_free, n_free);
+      lapack = result;
+      return lapack;
     };
     LAPACKFullMatrix<double> schur_free = restrict(schur);
     LAPACKFullMatrix<double> gram_free  = restrict(gram_m);

@@ -35,8 +35,9 @@ namespace StabilizedLagrangian
     setup();
     geometry_loop_needed = !(obstacle->is_flat() && !material->is_finite_strain());
 
-    // Adaptive refinement around the active set: the load path is solved on
-    // each mesh in turn; the last one writes into the output directory.
+    // Adaptive refinement (`Adaptive refinement/Cycles`, 0 by default): the
+    // load path is solved on each mesh in turn; the last one writes into the
+    // output directory.
     const unsigned int n_cycles = adaptive_refinement.cycles;
     std::ofstream      cycles_file;
     if (root && n_cycles > 0)

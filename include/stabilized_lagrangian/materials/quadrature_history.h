@@ -40,10 +40,9 @@ namespace StabilizedLagrangian
         committed_values.assign(static_cast<std::size_t>(triangulation.n_active_cells()) *
                                     n_points_per_cell * n_values,
                                 0.);
-        for (std::size_t point = 0; n_values > 0 && point * n_values < committed_values.size();
-             ++point)
-          material.initial_history(
-              ArrayView<double>(committed_values.data() + point * n_values, n_values));
+        if (n_values > 0)
+          for (std::size_t offset = 0; offset < committed_values.size(); offset += n_values)
+            material.initial_history(ArrayView<double>(committed_values.data() + offset, n_values));
         trial_values = committed_values;
       }
 

@@ -251,6 +251,14 @@ namespace StabilizedLagrangian
     setup_dofs();
     void
     setup_multiplier_numbering();
+    /** Whether face @p f of @p cell lies on the contact boundary Γc. */
+    template <typename CellIterator>
+    bool
+    is_contact_face(const CellIterator &cell, const unsigned int f) const
+    {
+      return cell->face(f)->at_boundary() &&
+             contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
+    }
     /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
     void
     add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
