@@ -204,8 +204,25 @@ namespace StabilizedLagrangian
     void
     NonlinearSolver::declare_parameters(ParameterHandler &prm)
     {
+      const auto declare_method = [&prm](const std::string &what) {
+        prm.declare_entry("Method",
+                          "fixed point",
+                          Patterns::Selection("fixed point|newton"),
+                          "fixed point: " + what +
+                              " is frozen in the inner loops and updated between them "
+                              "(the seed's nested algorithm); newton: it is evaluated at every "
+                              "Newton iterate and linearised in the Jacobian (generalized "
+                              "Newton), and this loop runs once per step.");
+      };
       prm.enter_subsection("Nonlinear solver");
+      prm.declare_entry("Maximum Newton iterations per load step",
+                        "2000",
+                        Patterns::Integer(1),
+                        "Budget of Newton iterations over all the loops of one load step: "
+                        "a step that needs more fails (and is cut), so cycling fixed points end "
+                        "quickly.");
       prm.enter_subsection("Geometry loop");
+      declare_method("the pairing (closest point, normal and tangents)");
       prm.declare_entry("Maximum iterations", "10", Patterns::Integer(1));
       prm.declare_entry("Tolerance",
                         "1e-4",
@@ -213,6 +230,7 @@ namespace StabilizedLagrangian
                         "Stop when max|u_k − u_{k−1}| / max|u_k| is at most this (seed §3).");
       prm.leave_subsection();
       prm.enter_subsection("Friction loop");
+      declare_method("the friction threshold s = μ λ_n");
       prm.declare_entry("Maximum iterations", "30", Patterns::Integer(1));
       prm.declare_entry("Tolerance",
                         "1e-4",
@@ -220,6 +238,7 @@ namespace StabilizedLagrangian
                         "Stop when max|s_new − s_old| / max|s_new| is at most this (seed §3).");
       prm.leave_subsection();
       prm.enter_subsection("Status loop");
+      declare_method("the contact status χ of every point");
       prm.declare_entry("Maximum iterations",
                         "30",
                         Patterns::Integer(1),
@@ -250,16 +269,23 @@ namespace StabilizedLagrangian
     void
     NonlinearSolver::parse_parameters(ParameterHandler &prm)
     {
+      const auto method = [&prm]() {
+        return prm.get("Method") == "newton" ? LoopMethod::newton : LoopMethod::fixed_point;
+      };
       prm.enter_subsection("Nonlinear solver");
+      max_newton_per_step = prm.get_integer("Maximum Newton iterations per load step");
       prm.enter_subsection("Geometry loop");
+      geometry_method         = method();
       geometry_max_iterations = prm.get_integer("Maximum iterations");
       geometry_tolerance      = prm.get_double("Tolerance");
       prm.leave_subsection();
       prm.enter_subsection("Friction loop");
+      friction_method         = method();
       friction_max_iterations = prm.get_integer("Maximum iterations");
       friction_tolerance      = prm.get_double("Tolerance");
       prm.leave_subsection();
       prm.enter_subsection("Status loop");
+      status_method         = method();
       status_max_iterations = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
       prm.enter_subsection("Newton");

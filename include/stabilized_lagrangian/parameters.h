@@ -97,10 +97,24 @@ namespace StabilizedLagrangian
       relative
     };
 
+    /**
+     * @brief How an outer loop's nonlinearity is solved: by its fixed point
+     * (frozen in the inner loops), or folded into the generalized Newton.
+     */
+    enum class LoopMethod
+    {
+      fixed_point,
+      newton
+    };
+
     /** @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops (DESIGN §3).
      */
     struct NonlinearSolver
     {
+      LoopMethod        geometry_method;
+      LoopMethod        friction_method;
+      LoopMethod        status_method;
+      unsigned int      max_newton_per_step; ///< budget of Newton iterations per load step
       unsigned int      geometry_max_iterations;
       double            geometry_tolerance;
       unsigned int      friction_max_iterations;

@@ -43,6 +43,12 @@ namespace StabilizedLagrangian
       }
 
       double
+      threshold_derivative(const double contact_pressure) const override
+      {
+        return contact_pressure > 0. ? mu : 0.;
+      }
+
+      double
       friction_coefficient() const override
       {
         return mu;
@@ -86,6 +92,12 @@ namespace StabilizedLagrangian
       threshold(const double) const override
       {
         return s;
+      }
+
+      double
+      threshold_derivative(const double) const override
+      {
+        return 0.;
       }
 
       double

@@ -145,7 +145,7 @@ namespace StabilizedLagrangian
       state.in_contact = Contact::is_in_contact(
           Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
       state.friction_threshold = friction_law->threshold(k.contact_pressure);
-      const auto point         = frozen_response(state, k);
+      const auto point         = point_response(state, k);
 
       std::vector<double> values;
       values.push_back(point.normal_traction());

@@ -630,12 +630,18 @@ namespace StabilizedLagrangian
     std::vector<unsigned int> u_component(n_u_cell);
     for (unsigned int i = 0; i < n_u_cell; ++i)
       u_component[i] = fe_u->system_to_component_index(i).first;
+    // the generalized Newton's linearised pairing (a plane's does not move)
+    const bool linearise_geometry =
+        folded(solver_parameters.geometry_method) && !obstacle->is_flat();
 
     FullMatrix<double>                   local_matrix;
     Vector<double>                       local_rhs;
     std::vector<types::global_dof_index> local_dofs;
+    std::vector<Tensor<1, dim>>          phi(n_u_cell);
     std::vector<double>                  normal_shape(n_u_cell);
     std::vector<Tensor<1, dim - 1>>      tangential_shape(n_u_cell);
+    // ∂Δs/∂u_j: the tangential shape, plus (∂t_α/∂x φ_j)·Δu when the tangents move
+    std::vector<Tensor<1, dim - 1>> slip_derivative(n_u_cell);
 
     for (const auto &face : contact_faces)
       {
@@ -653,27 +659,35 @@ namespace StabilizedLagrangian
 
         for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
           {
-            const ContactPointState<dim> &state = contact_states[face.first_point + q];
-            const ContactKinematics<dim>  k     = evaluator.kinematics(q);
-            const auto                    point = frozen_response(state, k);
-            const double                  w     = k.JxW;
+            ContactPointState<dim>      &state = contact_states[face.first_point + q];
+            const ContactKinematics<dim> k     = evaluator.kinematics(q);
+            refresh_folded_state(state, k);
+            const auto   point = point_response(state, k);
+            const double w     = k.JxW;
 
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
-                Tensor<1, dim> phi;
-                phi[u_component[i]] = evaluator.u_values.shape_value(i, q);
-                normal_shape[i]     = phi * state.pairing.normal;
-                tangential_shape[i] = state.pairing.tangential_components(phi);
+                phi[i]                 = Tensor<1, dim>();
+                phi[i][u_component[i]] = evaluator.u_values.shape_value(i, q);
+                normal_shape[i]        = phi[i] * state.pairing.normal;
+                tangential_shape[i]    = state.pairing.tangential_components(phi[i]);
+                slip_derivative[i]     = tangential_shape[i];
+                if (linearise_geometry)
+                  for (unsigned int a = 0; a < dim - 1; ++a)
+                    slip_derivative[i][a] +=
+                        (state.pairing.tangent_gradients[a] * phi[i]) * k.step_increment;
               }
             for (unsigned int a = 0; a < n_m; ++a)
               psi[a] = evaluator.m_values.shape_value(evaluator.m_local[a], q);
 
             // the slave's tractions do work against δu; DESIGN §2
-            const double             pressure_residual = point.pressure_residual();
-            const Tensor<1, dim - 1> semi_residual     = point.semi_multiplier_residual();
+            const double             normal_traction     = point.normal_traction();
+            const Tensor<1, dim - 1> tangential_traction = point.tangential_traction();
+            const double             pressure_residual   = point.pressure_residual();
+            const Tensor<1, dim - 1> semi_residual       = point.semi_multiplier_residual();
             for (unsigned int i = 0; i < n_u_cell; ++i)
-              local_rhs(i) -= w * (point.normal_traction() * normal_shape[i] +
-                                   point.tangential_traction() * tangential_shape[i]);
+              local_rhs(i) -= w * (normal_traction * normal_shape[i] +
+                                   tangential_traction * tangential_shape[i]);
             for (unsigned int a = 0; a < n_m; ++a)
               local_rhs(n_u_cell + a) +=
                   w * psi[a] *
@@ -681,37 +695,62 @@ namespace StabilizedLagrangian
             if (!assemble_matrix)
               continue;
 
+            // local_matrix(i, j) = ∂ local_rhs(i) / ∂ x_j
             const double             normal_stiffness     = point.normal_stiffness();
             const Tensor<2, dim - 1> tangential_stiffness = point.tangential_stiffness();
             const double             pressure_coupling    = point.pressure_coupling();
             const Tensor<2, dim - 1> friction_coupling    = point.friction_coupling();
             const double             pressure_compliance  = point.pressure_compliance();
             const Tensor<2, dim - 1> semi_block           = point.semi_multiplier_block();
+            const Tensor<1, dim - 1> traction_slope =
+                point.tangential_traction_pressure_derivative();
+            const Tensor<1, dim - 1> semi_slope =
+                point.semi_multiplier_residual_pressure_derivative();
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
                 for (unsigned int j = 0; j < n_u_cell; ++j)
-                  local_matrix(i, j) +=
-                      w * (normal_stiffness * normal_shape[i] * normal_shape[j] +
-                           tangential_shape[i] * (tangential_stiffness * tangential_shape[j]));
+                  {
+                    double value =
+                        normal_stiffness * normal_shape[i] * normal_shape[j] +
+                        tangential_shape[i] * (tangential_stiffness * slip_derivative[j]);
+                    if (linearise_geometry)
+                      {
+                        // the traction vector turns with n and t_α
+                        value -=
+                            normal_traction * (phi[i] * (state.pairing.normal_gradient * phi[j]));
+                        for (unsigned int a = 0; a < dim - 1; ++a)
+                          value -= tangential_traction[a] *
+                                   (phi[i] * (state.pairing.tangent_gradients[a] * phi[j]));
+                      }
+                    local_matrix(i, j) += w * value;
+                  }
                 for (unsigned int b = 0; b < n_m; ++b)
                   {
-                    const double value =
+                    const unsigned int c = m_component[b];
+                    // u rows, multiplier columns
+                    local_matrix(i, n_u_cell + b) +=
                         w * psi[b] *
-                        (m_component[b] == 0
-                             ? pressure_coupling * normal_shape[i]
-                             : tangential_shape[i] * friction_coupling[m_component[b] - 1]);
-                    local_matrix(i, n_u_cell + b) += value;
-                    local_matrix(n_u_cell + b, i) += value;
+                        (c == 0 ? pressure_coupling * normal_shape[i] -
+                                      traction_slope * tangential_shape[i]
+                                : tangential_shape[i] * friction_coupling[c - 1]);
+                    // multiplier rows, u columns
+                    local_matrix(n_u_cell + b, i) +=
+                        w * psi[b] *
+                        (c == 0 ? pressure_coupling * normal_shape[i]
+                                : friction_coupling[c - 1] * slip_derivative[i]);
                   }
               }
             for (unsigned int a = 0; a < n_m; ++a)
               for (unsigned int b = 0; b < n_m; ++b)
                 {
-                  double block = 0.;
-                  if (m_component[a] == 0 && m_component[b] == 0)
+                  const unsigned int ca = m_component[a], cb = m_component[b];
+                  double             block = 0.;
+                  if (ca == 0 && cb == 0)
                     block = pressure_compliance;
-                  else if (m_component[a] > 0 && m_component[b] > 0)
-                    block = semi_block[m_component[a] - 1][m_component[b] - 1];
+                  else if (ca > 0 && cb > 0)
+                    block = semi_block[ca - 1][cb - 1];
+                  else if (ca > 0)
+                    block = semi_slope[ca - 1];
                   local_matrix(n_u_cell + a, n_u_cell + b) += w * block * psi[a] * psi[b];
                 }
           }
@@ -744,18 +783,36 @@ namespace StabilizedLagrangian
 
   template <int dim>
   Contact::PointResponse<dim - 1>
-  ContactProblem<dim>::frozen_response(const ContactPointState<dim> &state,
-                                       const ContactKinematics<dim> &k) const
+  ContactProblem<dim>::point_response(const ContactPointState<dim> &state,
+                                      const ContactKinematics<dim> &k) const
   {
-    return Contact::PointResponse<dim - 1>(k.contact_pressure,
-                                           state.pairing.gap(k.position),
-                                           k.semi_multiplier,
-                                           state.pairing.tangential_components(k.step_increment),
-                                           state.in_contact,
-                                           state.friction_threshold,
-                                           friction_law->has_friction(),
-                                           contact_parameters.r_n,
-                                           contact_parameters.r_t);
+    return Contact::PointResponse<dim - 1>(
+        k.contact_pressure,
+        state.pairing.gap(k.position),
+        k.semi_multiplier,
+        state.pairing.tangential_components(k.step_increment),
+        state.in_contact,
+        state.friction_threshold,
+        friction_law->has_friction(),
+        contact_parameters.r_n,
+        contact_parameters.r_t,
+        folded(solver_parameters.friction_method)
+            ? friction_law->threshold_derivative(k.contact_pressure)
+            : 0.);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refresh_folded_state(ContactPointState<dim>       &state,
+                                            const ContactKinematics<dim> &k) const
+  {
+    if (folded(solver_parameters.geometry_method))
+      state.pairing = obstacle->project(k.position);
+    if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
+      state.friction_threshold = friction_law->threshold(k.contact_pressure);
+    if (folded(solver_parameters.status_method))
+      state.in_contact = Contact::is_in_contact(Contact::augmented_pressure(
+          k.contact_pressure, state.pairing.gap(k.position), contact_parameters.r_n));
   }
 
   template <int dim>
@@ -775,7 +832,7 @@ namespace StabilizedLagrangian
     double         normal_force = 0.;
     Tensor<1, dim> total_force, tangential_force;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const auto point = frozen_response(state, k);
+      const auto point = point_response(state, k);
       ++counts[0];
       if (point.status() == Contact::Status::open)
         return;

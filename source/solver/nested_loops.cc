@@ -106,6 +106,11 @@ namespace StabilizedLagrangian
       pcout << "  friction loop runs once per step: frictionless\n";
     else if (!friction_law->threshold_depends_on_pressure())
       pcout << "  friction loop runs once per step: fixed (Tresca) threshold\n";
+    for (const auto &[loop, method] : {std::pair{"geometry", solver_parameters.geometry_method},
+                                       std::pair{"friction", solver_parameters.friction_method},
+                                       std::pair{"status", solver_parameters.status_method}})
+      if (folded(method))
+        pcout << "  " << loop << " loop folded into the generalized Newton\n";
 
     output_results(0, 0.);
 
@@ -272,6 +277,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::geometry_loop(StepStatistics &stats)
   {
+    // folded into Newton, the pairing is re-evaluated at every iterate
+    const bool iterate = geometry_loop_needed && !folded(solver_parameters.geometry_method);
     for (unsigned int k = 1; k <= solver_parameters.geometry_max_iterations; ++k)
       {
         stats.geometry_iterations = k;
@@ -282,7 +289,7 @@ namespace StabilizedLagrangian
         const TrilinosWrappers::MPI::Vector previous = solution;
         if (!friction_loop(stats, k))
           return false;
-        if (!geometry_loop_needed)
+        if (!iterate)
           return true;
         if (relative_displacement_change(previous) <= solver_parameters.geometry_tolerance)
           return true;
@@ -296,7 +303,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::friction_loop(StepStatistics &stats, const unsigned int k)
   {
-    if (!friction_law->has_friction() || !friction_law->threshold_depends_on_pressure())
+    if (!friction_law->has_friction() || !friction_law->threshold_depends_on_pressure() ||
+        folded(solver_parameters.friction_method))
       {
         ++stats.friction_iterations;
         return status_loop(stats, k, 1);
@@ -320,6 +328,12 @@ namespace StabilizedLagrangian
                                    const unsigned int k,
                                    const unsigned int j)
   {
+    if (folded(solver_parameters.status_method))
+      {
+        // the statuses are those of the converged iterate by construction
+        ++stats.status_iterations;
+        return newton_loop(stats, k, j, 1);
+      }
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
@@ -382,6 +396,13 @@ namespace StabilizedLagrangian
           {
             pcout << "  Newton: residual " << residual << " after " << iteration
                   << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+            return false;
+          }
+        if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
+          {
+            pcout << "  Newton: " << stats.newton_iterations + iteration
+                  << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
+                     "per load step)\n";
             return false;
           }
 

@@ -28,6 +28,10 @@ namespace StabilizedLagrangian
       virtual double
       threshold(const double contact_pressure) const = 0;
 
+      /** @brief ds/dλ_n, for the generalized Newton that linearises the threshold. */
+      virtual double
+      threshold_derivative(const double contact_pressure) const = 0;
+
       /** @brief Coefficient used to scale r_t (μ for Coulomb). */
       virtual double
       friction_coefficient() const = 0;

@@ -60,7 +60,13 @@ namespace StabilizedLagrangian
     }
 
     /**
-     * @brief Generalized derivative of P_B: I in the ball, (I − v̂⊗v̂)/|v| outside.
+     * @brief Generalized derivative of P_B: I inside the ball, (I − v̂⊗v̂)/|v| on
+     * and outside it.
+     *
+     * On the sphere |v| = 1 both are generalized derivatives; the slip one is
+     * taken, up to round-off, because a point that slipped in the previous load
+     * step starts the next one there (Δs = 0, |Λ| = 1): with the stick
+     * derivative the first Newton iterations of every step would hold it.
      */
     template <int n>
     Tensor<2, n>
@@ -68,7 +74,7 @@ namespace StabilizedLagrangian
     {
       const double norm       = v.norm();
       Tensor<2, n> derivative = unit_symmetric_tensor<n>();
-      if (norm > 1.)
+      if (norm >= 1. - 1e-10)
         {
           const Tensor<1, n> direction = v / norm;
           derivative                   = (derivative - outer_product(direction, direction)) / norm;
@@ -85,10 +91,15 @@ namespace StabilizedLagrangian
     };
 
     /**
-     * @brief The stabilized Lagrangian at one contact point for a frozen contact
+     * @brief The stabilized Lagrangian at one contact point for a given contact
      * status χ and friction threshold s (DESIGN §2): the tractions it applies to
      * the slave, the residuals of the multiplier equations, and the coefficients
      * of their Jacobian. The assembly only contracts these with shape functions.
+     *
+     * The nested fixed points freeze χ and s; the generalized Newton evaluates
+     * them at the current iterate, which gives the same coefficients (χ is
+     * piecewise constant) plus, when s = s(λ_n) is linearised, the derivatives
+     * with respect to λ_n of the tangential traction and of the Λ residual.
      *
      * @tparam n number of tangential components, dim − 1
      */
@@ -103,6 +114,7 @@ namespace StabilizedLagrangian
        * @param in_contact frozen status χ
        * @param threshold frozen friction threshold s
        * @param has_friction whether the law has friction unknowns at all
+       * @param threshold_slope ds/dλ_n when the threshold is linearised, else 0
        */
       PointResponse(const double        contact_pressure,
                     const double        gap,
@@ -112,10 +124,12 @@ namespace StabilizedLagrangian
                     const double        threshold,
                     const bool          has_friction,
                     const double        r_n,
-                    const double        r_t)
+                    const double        r_t,
+                    const double        threshold_slope = 0.)
           : chi(in_contact ? 1. : 0.)
           , chi_f((has_friction && in_contact && threshold > 0.) ? 1. : 0.)
           , s(threshold)
+          , ds(threshold_slope)
           , r_n(r_n)
           , r_t(r_t)
           , lambda(contact_pressure)
@@ -187,6 +201,20 @@ namespace StabilizedLagrangian
         return chi_f * s * d_projected;
       }
 
+      /** @brief ∂(tangential traction)/∂λ_n, −χ_f (ds/dλ_n) P_B(ĝ); zero with s frozen. */
+      Tensor<1, n>
+      tangential_traction_pressure_derivative() const
+      {
+        return -chi_f * ds * projected;
+      }
+
+      /** @brief ∂(Λ residual)/∂λ_n, −χ_f (ds/dλ_n)/r_t (Λ − P_B(ĝ)); zero with s frozen. */
+      Tensor<1, n>
+      semi_multiplier_residual_pressure_derivative() const
+      {
+        return -chi_f * (ds / r_t) * (semi - projected);
+      }
+
       /** @brief The λ_n–λ_n block, −(1−χ)/r_n. */
       double
       pressure_compliance() const
@@ -212,7 +240,7 @@ namespace StabilizedLagrangian
       }
 
     private:
-      const double       chi, chi_f, s, r_n, r_t;
+      const double       chi, chi_f, s, ds, r_n, r_t;
       const double       lambda, gap_value;
       const Tensor<1, n> semi;
       const double       lambda_hat;

@@ -25,6 +25,12 @@ namespace StabilizedLagrangian
       Point<dim>                          master_point;
       Tensor<1, dim>                      normal;
       std::array<Tensor<1, dim>, dim - 1> tangents;
+      /**
+       * ∂n/∂x and ∂t_α/∂x at the slave position: how the pairing moves with the
+       * slave point, which the generalized Newton linearises (zero for a plane).
+       */
+      Tensor<2, dim>                      normal_gradient;
+      std::array<Tensor<2, dim>, dim - 1> tangent_gradients;
 
       /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
       double
@@ -60,6 +66,14 @@ namespace StabilizedLagrangian
     template <int dim>
     std::array<Tensor<1, dim>, dim - 1>
     tangent_basis(const Tensor<1, dim> &n);
+
+    /**
+     * @brief ∂t_α/∂n of tangent_basis() (entry [α][i][j] = ∂t_α,i/∂n_j), for the
+     * chain rule ∂t_α/∂x = ∂t_α/∂n · ∂n/∂x.
+     */
+    template <int dim>
+    std::array<Tensor<2, dim>, dim - 1>
+    tangent_basis_derivative(const Tensor<1, dim> &n);
 
     /**
      * @brief Interface of rigid analytic obstacles (the master surface).

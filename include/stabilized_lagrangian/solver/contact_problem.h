@@ -318,9 +318,24 @@ namespace StabilizedLagrangian
     /** Refine the cells near the recorded active set. */
     void
     refine_around_active_set();
-    /** The point-wise stabilized Lagrangian with the frozen status and threshold of @p state. */
+    /**
+     * The point-wise stabilized Lagrangian with the status and threshold of
+     * @p state (with the threshold's slope when it is linearised).
+     */
     Contact::PointResponse<dim - 1>
-    frozen_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    /**
+     * Re-evaluate at the current iterate what the loops folded into the
+     * generalized Newton would otherwise freeze: pairing, threshold, status.
+     */
+    void
+    refresh_folded_state(ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    /** Whether @p method folds its loop into the generalized Newton. */
+    static bool
+    folded(const Parameters::LoopMethod method)
+    {
+      return method == Parameters::LoopMethod::newton;
+    }
 
     // --- output.cc ---
     void
