@@ -289,7 +289,7 @@ def draw_map(ax, rows, title, norm=None):
                 segments.append([(x_edges[i + 1], y_edges[j]), (x_edges[i + 1], y_edges[j + 1])])
             if j + 1 < len(rt_values) and converged[j, i] != converged[j + 1, i]:
                 segments.append([(x_edges[i], y_edges[j + 1]), (x_edges[i + 1], y_edges[j + 1])])
-    ax.add_collection(LineCollection(segments, colors="black", linewidths=2.5))
+    ax.add_collection(LineCollection(segments, colors="black", linewidths=2.5, capstyle="projecting"))
     if len(rn_values) <= 15 and len(rt_values) <= 15:
         for line in cells:
             for c in line:
@@ -410,7 +410,7 @@ def main():
         if not (0 < low <= high and n >= 1 and n == int(n)):
             parser.error(f"--{name} MIN MAX N needs 0 < MIN <= MAX and an integer N >= 1")
     label = args.label or f"{os.path.splitext(os.path.basename(args.scene))[0]}, {args.algorithm}"
-    workdir = args.workdir or os.path.join("/tmp/robustness", re.sub(r"[^\w.-]+", "_", label))
+    workdir = args.workdir or os.path.join("/tmp/robustness", re.sub(r"[^\w.-]+", "_", label).strip("_"))
     output = args.output or os.path.join(workdir, "map")
     try:
         scene_text = build_scene(args.scene, args.set, args.algorithm, args.max_cuts)

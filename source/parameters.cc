@@ -7,6 +7,7 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -25,10 +26,27 @@ namespace StabilizedLagrangian
                         Patterns::List(Patterns::Integer(0, 255), 1),
                         "Boundary ids of the slave contact surface Γc, which carries the "
                         "multipliers.");
-      prm.declare_entry(
-          "r_n", "1e4", Patterns::Double(), "Normal augmentation parameter r_n > 0 (N/mm^3).");
-      prm.declare_entry(
-          "r_t", "1", Patterns::Double(), "Tangential augmentation parameter r_t > 0 (1/mm).");
+      prm.declare_entry("r_n",
+                        "1e4",
+                        Patterns::Anything(),
+                        "Normal augmentation parameter r_n > 0 (N/mm^3), or `automatic`: "
+                        "r_n = C_n E / h from the Young's modulus E of the material and the "
+                        "largest face diameter h on Γc (doc/robustness.md gives C_n).");
+      prm.declare_entry("r_t",
+                        "1",
+                        Patterns::Anything(),
+                        "Tangential augmentation parameter r_t > 0 (1/mm), or `automatic`: "
+                        "r_t = C_t μ / h from the friction coefficient μ and h "
+                        "(doc/robustness.md gives C_t).");
+      prm.declare_entry("Automatic r_n factor",
+                        "1",
+                        Patterns::Double(),
+                        "With r_n = automatic: a factor > 0 on the automatic value (to scan "
+                        "around it).");
+      prm.declare_entry("Automatic r_t factor",
+                        "1",
+                        Patterns::Double(),
+                        "With r_t = automatic: a factor > 0 on the automatic value.");
       prm.declare_entry(
           "Finite element pair", "Q1/P1", Patterns::Selection(fe_pairs), fe_pair_documentation);
       prm.declare_entry(
@@ -49,12 +67,35 @@ namespace StabilizedLagrangian
       boundary_ids.clear();
       for (const auto &id : Utilities::split_string_list(prm.get("Contact boundary ids")))
         boundary_ids.insert(Utilities::string_to_int(id));
-      r_n = prm.get_double("r_n");
-      r_t = prm.get_double("r_t");
-      if (!(r_n > 0.))
-        throw InputError("Contact/r_n must be > 0 (N/mm^3), got " + prm.get("r_n") + ".");
-      if (!(r_t > 0.))
-        throw InputError("Contact/r_t must be > 0 (1/mm), got " + prm.get("r_t") + ".");
+      // a positive number, or `automatic` (times a positive factor)
+      const auto parse_parameter = [&prm](const std::string &name,
+                                          const std::string &unit,
+                                          double            &value,
+                                          bool              &automatic,
+                                          double            &factor) {
+        const std::string text = Utilities::trim(prm.get(name));
+        automatic              = text == "automatic";
+        factor                 = prm.get_double("Automatic " + name + " factor");
+        if (!(factor > 0.) || !std::isfinite(factor))
+          throw InputError("Contact/Automatic " + name + " factor must be > 0, got " +
+                           prm.get("Automatic " + name + " factor") + ".");
+        if (automatic)
+          return;
+        std::size_t end = 0;
+        try
+          {
+            value = std::stod(text, &end);
+          }
+        catch (const std::exception &)
+          {
+            end = 0;
+          }
+        if (end == 0 || end != text.size() || !(value > 0.) || !std::isfinite(value))
+          throw InputError("Contact/" + name + " must be a number > 0 (" + unit +
+                           ") or `automatic`, got '" + text + "'.");
+      };
+      parse_parameter("r_n", "N/mm^3", r_n, r_n_automatic, r_n_factor);
+      parse_parameter("r_t", "1/mm", r_t, r_t_automatic, r_t_factor);
       fe_pair    = prm.get("Finite element pair");
       quadrature = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
                                                             : ContactQuadrature::gauss_lobatto;

@@ -33,8 +33,12 @@ namespace StabilizedLagrangian
     struct Contact
     {
       std::set<types::boundary_id> boundary_ids;
-      double                       r_n = 0.;
+      double                       r_n = 0.; ///< the value used (set by the run when automatic)
       double                       r_t = 0.;
+      bool                         r_n_automatic = false;
+      bool                         r_t_automatic = false;
+      double                       r_n_factor    = 1.; ///< multiplies the automatic r_n
+      double                       r_t_factor    = 1.;
       std::string                  fe_pair;
       ContactQuadrature            quadrature = ContactQuadrature::gauss_lobatto;
 

@@ -70,6 +70,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::setup_after_refinement()
   {
+    choose_augmentation_parameters();
     setup_dofs();
     setup_contact_points();
     material_history.initialize(triangulation, cell_quadrature.size(), *material);
@@ -133,6 +134,41 @@ namespace StabilizedLagrangian
       require(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
     for (const auto &bc : boundary_conditions.neumann)
       require(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::choose_augmentation_parameters()
+  {
+    if (!contact_parameters.r_n_automatic && !contact_parameters.r_t_automatic)
+      return;
+    double h = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            h = std::max(h, cell->face(f)->diameter());
+    h = Utilities::MPI::max(h, mpi_communicator);
+    AssertThrow(h > 0., ExcMessage("the contact boundary has no faces"));
+    const double E  = material->youngs_modulus();
+    const double mu = friction_law->friction_coefficient();
+    if (contact_parameters.r_n_automatic)
+      {
+        contact_parameters.r_n =
+            contact_parameters.r_n_factor * Contact::automatic_r_n_constant * E / h;
+        pcout << "  r_n = automatic: " << contact_parameters.r_n_factor << " x "
+              << Contact::automatic_r_n_constant << " E/h = " << contact_parameters.r_n
+              << " N/mm^3 (E = " << E << " MPa, h = " << h << " mm)\n";
+      }
+    if (contact_parameters.r_t_automatic)
+      {
+        // without friction r_t only scales rows that do not exist
+        contact_parameters.r_t = contact_parameters.r_t_factor * Contact::automatic_r_t_constant *
+                                 (mu > 0. ? mu : 1.) / h;
+        pcout << "  r_t = automatic: " << contact_parameters.r_t_factor << " x "
+              << Contact::automatic_r_t_constant << " mu/h = " << contact_parameters.r_t
+              << " 1/mm (mu = " << mu << ", h = " << h << " mm)\n";
+      }
   }
 
   template <int dim>

@@ -196,14 +196,15 @@ namespace StabilizedLagrangian
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ofstream file(output_parameters.directory + "/run_summary.csv");
-    file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,load_steps,"
+    file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
             "newton_iterations,mean_newton_iterations_per_step,wall_time_s";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
          << dim << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
          << n_multipliers << ',' << Utilities::MPI::n_mpi_processes(mpi_communicator) << ','
-         << n_steps << ',' << statistics.cumulative_newton_iterations() << ','
+         << contact_parameters.r_n << ',' << contact_parameters.r_t << ',' << n_steps << ','
+         << statistics.cumulative_newton_iterations() << ','
          << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
          << wall_time;
     for (const auto &entry : slowest)

@@ -12,6 +12,13 @@ namespace StabilizedLagrangian
   {
     using namespace dealii;
 
+    /**
+     * @brief Constants of the automatic augmentation parameters r_n = C_n E/h
+     * and r_t = C_t μ/h, from the robustness study (doc/robustness.md).
+     */
+    constexpr double automatic_r_n_constant = 0.15;
+    constexpr double automatic_r_t_constant = 30.;
+
     /** @brief Augmented pressure λ̂ = λ_n − r_n g_n (compression positive). */
     inline double
     augmented_pressure(const double contact_pressure, const double gap, const double r_n)

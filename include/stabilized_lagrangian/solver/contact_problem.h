@@ -249,6 +249,9 @@ namespace StabilizedLagrangian
     setup_after_refinement();
     void
     setup_dofs();
+    /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
+    void
+    choose_augmentation_parameters();
     void
     setup_multiplier_numbering();
     /** Whether face @p f of @p cell lies on the contact boundary Γc. */
