@@ -8,8 +8,9 @@ MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CO
                OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
-def run(executable, prm_text, workdir, ranks=1, expect_success=True):
-    """Write prm_text to workdir/input.prm, run the program there, return (exit code, stdout+stderr)."""
+def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=1200):
+    """Write prm_text to workdir/input.prm, run the program there, return (exit code, stdout+stderr).
+    Raises subprocess.TimeoutExpired after `timeout` seconds."""
     os.makedirs(workdir, exist_ok=True)
     prm = os.path.join(workdir, "input.prm")
     with open(prm, "w") as f:
@@ -18,7 +19,7 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True):
     if ranks > 1:
         command = ["mpirun", "-np", str(ranks)] + command
     result = subprocess.run(command, cwd=workdir, env=MPI_ENV, capture_output=True, text=True,
-                            timeout=1200)
+                            timeout=timeout)
     output = result.stdout + result.stderr
     if expect_success and result.returncode != 0:
         print(output)
