@@ -384,6 +384,12 @@ namespace StabilizedLagrangian
                         "true",
                         Patterns::Bool(),
                         "Write a contact-surface profile .csv per load step.");
+      prm.declare_entry("Log Newton iterations",
+                        "false",
+                        Patterns::Bool(),
+                        "Print every Newton iterate's residual, the line search's step "
+                        "lengths and the open/stick/slip counts of each trial: to see where "
+                        "an algorithm spends its iterations.");
       prm.leave_subsection();
     }
 
@@ -438,6 +444,7 @@ namespace StabilizedLagrangian
       directory      = prm.get("Output directory");
       write_vtu      = prm.get_bool("Write vtu");
       write_profiles = prm.get_bool("Write profiles");
+      log_newton     = prm.get_bool("Log Newton iterations");
       prm.leave_subsection();
     }
 

@@ -175,6 +175,7 @@ namespace StabilizedLagrangian
       std::string directory;
       bool        write_vtu;
       bool        write_profiles;
+      bool        log_newton; ///< print every Newton iterate and line-search trial
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -380,6 +380,8 @@ namespace StabilizedLagrangian
           }
         if (iteration == 0)
           first_residual = residual;
+        if (output_parameters.log_newton)
+          pcout << "    Newton " << iteration << ": residual " << residual << "\n";
         const bool   predictor = dirichlet_predictor;
         const double tolerance =
             solver_parameters.newton_tolerance *
@@ -462,6 +464,8 @@ namespace StabilizedLagrangian
         solution.add(step, update);
         update_ghosts();
         assemble_newton_system(false);
+        if (output_parameters.log_newton)
+          log_trial(step);
         if (halving == max_halvings)
           return;
         if (inadmissible_state.empty())
@@ -472,6 +476,21 @@ namespace StabilizedLagrangian
           }
         step /= 2.;
       }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::log_trial(const double step)
+  {
+    unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      ++counts[static_cast<unsigned int>(point_response(state, k).status())];
+    });
+    pcout << "      step length " << step << ": residual " << residual_norm()
+          << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
+          << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
+          << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
+          << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
   }
 
   template <int dim>
@@ -530,6 +549,7 @@ namespace StabilizedLagrangian
       StepStatistics &, unsigned int, unsigned int, unsigned int);                              \
   template void ContactProblem<dim>::line_search(                                               \
       const TrilinosWrappers::MPI::Vector &, double, double, unsigned int);                     \
+  template void         ContactProblem<dim>::log_trial(double);                                 \
   template unsigned int ContactProblem<dim>::update_statuses();                                 \
   template double       ContactProblem<dim>::update_friction_thresholds();
 

@@ -234,6 +234,9 @@ namespace StabilizedLagrangian
                 const double                         residual,
                 const double                         previous_residual,
                 const unsigned int                   max_halvings);
+    /** Print a line-search trial: step length, residual, open/stick/slip counts. */
+    void
+    log_trial(const double step);
     unsigned int
     update_statuses();
     double
