@@ -75,7 +75,7 @@ SCALING_RT = (1e-5, 1e8, 27)
 SCALING_FIXED = dict(r_n=1.0, r_t=1e4)  # the fixed other parameter: r_t = 1 in the r_n sweep, r_n = 1e4 in the r_t one
 SCALING_COLUMNS = ["refinements", "h_mm", "E_MPa", "mu", "algorithm", "parameter", "fixed_other", "converged",
                    "points", "best_value", "best_mean_newton_per_step", "r_min", "r_max", "C_min", "C_max",
-                   "failures"]
+                   "failures", "pattern"]
 
 AUTOMATIC_SCENES = [("patin_elastic", "elastic patin"), ("patin_neo_hookean", "neo-Hookean patin"),
                     ("patin_elastoplastic", "J2 elasto-plastic patin"), ("hertz_cylinder", "Hertz cylinder")]
@@ -214,6 +214,12 @@ def sweep_bounds(rows, parameter):
     return rows[ib], r_min, r_max
 
 
+def pattern(rows, parameter):
+    """The outcomes of a 1D sweep from its smallest value up: + converged, . diverged, E error or timeout."""
+    symbols = dict(converged="+", diverged=".")
+    return "".join(symbols.get(r["outcome"], "E") for r in sorted(rows, key=lambda r: r[parameter]))
+
+
 def run_scaling(args):
     scene_path = os.path.join(root, "prm", "patin_elastic.prm")
     table = []
@@ -247,7 +253,7 @@ def run_scaling(args):
                     fixed_other=fixed, converged=sum(r["outcome"] == "converged" for r in rows), points=len(rows),
                     best_value=best and best[parameter], best_mean_newton_per_step=best and best["mean_newton_per_step"],
                     r_min=r_min, r_max=r_max, C_min=r_min and r_min * h / scale, C_max=r_max and r_max * h / scale,
-                    failures=sum(is_bug(r) for r in rows)))
+                    failures=sum(is_bug(r) for r in rows), pattern=pattern(rows, parameter)))
     with open(os.path.join(doc, "robustness_scaling.csv"), "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(SCALING_COLUMNS)
@@ -331,26 +337,36 @@ def scaling_markdown(table):
              "r_max (r_min) = the largest (smallest) converged value before the first failure above (below) the "
              "value with the fewest iterations (ties: the smallest value); \"none in range\" = converged up to "
              "the end of the range. C = r·h/E for r_n (N/mm³·mm/MPa, dimensionless), C = r·h/μ for r_t "
-             "(dimensionless). The grid step is a factor √10 ≈ 3.16, so each r_max, r_min and C is known to "
-             "within that factor only. Data: `doc/robustness_scaling.csv`.", "",
+             "(dimensionless); \"≥ X\" (\"≤ X\"): r_max (r_min) is beyond the range, X is C at its end. The "
+             "grid step is a factor √10 ≈ 3.16, so each r_max, r_min and C is known to within that factor only. "
+             "Outcomes: one character per swept value, + converged, . diverged, E error/timeout. "
+             "Data: `doc/robustness_scaling.csv`.", "",
              "![scaling](robustness_scaling.png)", ""]
-    for parameter, scale_name in (("r_n", "E"), ("r_t", "μ")):
+    for parameter, scale_name, values in (("r_n", "E", SCALING_RN), ("r_t", "μ", SCALING_RT)):
         lines += [f"#### {parameter} (C = {parameter}·h/{scale_name})", "",
                   "| refinements | h (mm) | E (MPa) | μ | algorithm | converged | fewest iterations (at) "
-                  f"| {parameter},min | {parameter},max | C_min | C_max |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+                  f"| {parameter},min | {parameter},max | C_min | C_max | outcomes, {fmt(values[0])} → "
+                  f"{fmt(values[1])} |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in (r for r in table if r["parameter"] == parameter):
             def bound(value):
                 if not r["converged"]:
                     return "none converged"
                 return "none in range" if value is None else fmt(value, 2)
 
+            def constant(value, end, relation):
+                """C, or the bound on it given by the end of the range when r is beyond it."""
+                if value is not None or not r["converged"]:
+                    return fmt(value)
+                return f"{relation} {fmt(end * r['h_mm'] / (r['E_MPa'] if parameter == 'r_n' else r['mu']))}"
+
             lines.append(
                 f"| {r['refinements']} | {r['h_mm']:g} | {r['E_MPa']:g} | {r['mu']:g} | {r['algorithm']} "
                 f"| {r['converged']}/{r['points']} | {fmt(r['best_mean_newton_per_step'])} "
                 f"({fmt(r['best_value'], 2)}) "
                 f"| {bound(r['r_min'])} | {bound(r['r_max'])} "
-                f"| {fmt(r['C_min'])} | {fmt(r['C_max'])} |")
+                f"| {constant(r['C_min'], values[0], '≤')} | {constant(r['C_max'], values[1], '≥')} "
+                f"| `{r['pattern']}` |")
         lines.append("")
     # the checks of proportionality: the spread of C over the configurations, and the ratios of r_max
     lines += ["#### Proportionality checks", "",

@@ -36,8 +36,9 @@ namespace StabilizedLagrangian
                         "1",
                         Patterns::Anything(),
                         "Tangential augmentation parameter r_t > 0 (1/mm), or `automatic`: "
-                        "r_t = C_t μ / h from the friction coefficient μ and h "
-                        "(doc/robustness.md gives C_t).");
+                        "r_t = C_t / l with l the largest displacement increment the Dirichlet "
+                        "data prescribe over one load step (h without prescribed motion): "
+                        "r_t l, not μ/h, sets the good range (doc/robustness.md gives C_t).");
       prm.declare_entry("Automatic r_n factor",
                         "1",
                         Patterns::Double(),

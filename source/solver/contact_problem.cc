@@ -150,8 +150,7 @@ namespace StabilizedLagrangian
             h = std::max(h, cell->face(f)->diameter());
     h = Utilities::MPI::max(h, mpi_communicator);
     AssertThrow(h > 0., ExcMessage("the contact boundary has no faces"));
-    const double E  = material->youngs_modulus();
-    const double mu = friction_law->friction_coefficient();
+    const double E = material->youngs_modulus();
     if (contact_parameters.r_n_automatic)
       {
         contact_parameters.r_n =
@@ -162,13 +161,46 @@ namespace StabilizedLagrangian
       }
     if (contact_parameters.r_t_automatic)
       {
-        // without friction r_t only scales rows that do not exist
-        contact_parameters.r_t = contact_parameters.r_t_factor * Contact::automatic_r_t_constant *
-                                 (mu > 0. ? mu : 1.) / h;
+        // without prescribed motion, the contact mesh size is the length scale
+        const double increment = largest_dirichlet_increment();
+        const double length    = increment > 0. ? increment : h;
+        contact_parameters.r_t =
+            contact_parameters.r_t_factor * Contact::automatic_r_t_constant / length;
         pcout << "  r_t = automatic: " << contact_parameters.r_t_factor << " x "
-              << Contact::automatic_r_t_constant << " mu/h = " << contact_parameters.r_t
-              << " 1/mm (mu = " << mu << ", h = " << h << " mm)\n";
+              << Contact::automatic_r_t_constant << "/l = " << contact_parameters.r_t
+              << " 1/mm (l = " << length << " mm, "
+              << (increment > 0. ? "the largest prescribed displacement increment of a load step"
+                                 : "h: no prescribed displacement increment")
+              << ")\n";
       }
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::largest_dirichlet_increment()
+  {
+    const double   step      = load_stepping.end_time / load_stepping.n_steps;
+    double         increment = 0.;
+    Vector<double> before(dim), after(dim);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
+                  {
+                    bc.displacement->set_time(k * step);
+                    bc.displacement->vector_value(cell->face(f)->vertex(v), before);
+                    bc.displacement->set_time((k + 1) * step);
+                    bc.displacement->vector_value(cell->face(f)->vertex(v), after);
+                    double norm_squared = 0.;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (bc.components[d])
+                        norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
+                    increment = std::max(increment, std::sqrt(norm_squared));
+                  }
+    return Utilities::MPI::max(increment, mpi_communicator);
   }
 
   template <int dim>

@@ -13,11 +13,15 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
-     * @brief Constants of the automatic augmentation parameters r_n = C_n E/h
-     * and r_t = C_t μ/h, from the robustness study (doc/robustness.md).
+     * @brief Constants of the automatic augmentation parameters
+     * r_n = C_n E/h and r_t = C_t/ℓ, with h the largest face diameter on Γc and
+     * ℓ the largest prescribed displacement increment of a nominal load step
+     * (the slip a step can produce): the robustness study (doc/robustness.md)
+     * finds r_n without influence over many decades, and the good r_t band
+     * set by r_t ℓ, not by μ/h.
      */
-    constexpr double automatic_r_n_constant = 0.15;
-    constexpr double automatic_r_t_constant = 30.;
+    constexpr double automatic_r_n_constant = 1.;
+    constexpr double automatic_r_t_constant = 3.;
 
     /** @brief Augmented pressure λ̂ = λ_n − r_n g_n (compression positive). */
     inline double

@@ -255,6 +255,10 @@ namespace StabilizedLagrangian
     /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
     void
     choose_augmentation_parameters();
+    /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
+     */
+    double
+    largest_dirichlet_increment();
     void
     setup_multiplier_numbering();
     /** Whether face @p f of @p cell lies on the contact boundary Γc. */
