@@ -424,7 +424,7 @@ def used_parameters(case_dir):
     try:
         with open(os.path.join(case_dir, "log.txt")) as f:
             for line in f:
-                match = re.match(r"\s*(r_[nt]) = automatic: \S+ x \S+ (?:E|mu)/h = (\S+) ", line)
+                match = re.match(r"\s*(r_[nt]) = automatic: \S+ x \S+ ?(?:E/h|/l) = (\S+) ", line)
                 if match:
                     values[match.group(1)] = float(match.group(2))
     except FileNotFoundError:
@@ -485,8 +485,9 @@ def automatic_markdown(table):
 
     header = "| scene | algorithm | " + " | ".join(f"f = {f:g}" for f in AUTOMATIC_FACTORS) + " |"
     rule = "|---|---|" + "---|" * len(AUTOMATIC_FACTORS)
-    lines = ["r_n = r_t = automatic (r_n = f·0.15·E/h, r_t = f·30·μ/h; μ = 0 on the Hertz cylinder, where the "
-             "program uses μ = 1 in r_t, which then scales no rows) with both Automatic factors = f; the step "
+    lines = ["r_n = r_t = automatic (r_n = f·C_n·E/h, r_t = f·C_t/l with l the largest prescribed displacement "
+             "increment of a load step; C_n and C_t in include/stabilized_lagrangian/contact/stabilized_lagrangian.h; "
+             "the Hertz cylinder is frictionless, r_t scales no rows there) with both Automatic factors = f; the step "
              "cuts (5) and the Newton budget (2000 per load step) as shipped, so \"div.\" = still failing at the "
              "smallest cut step. Data: `doc/robustness_automatic.csv`.", "",
              "Values at f = 1:", "",

@@ -27,7 +27,7 @@ cases = {
     "missing boundary id": (base.replace("set Contact boundary ids = 2", "set Contact boundary ids = 7"),
                             ["Contact boundary ids", "7", "0, 1, 2, 3"]),
     "wrong variable names": (base.replace("x,y,t", "x,t"), ["Variable names", "x,y,t"]),
-    "bad r_n": (base.replace("set r_n                  = 1e4", "set r_n                  = 0"),
+    "bad r_n": (base.replace("set r_n                  = automatic", "set r_n                  = 0"),
                 ["r_n", "> 0"]),
     "softening hardening curve": (
         base.replace("set Model = linear elastic", "set Model = J2 plasticity\n"
