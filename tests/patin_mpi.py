@@ -2,7 +2,8 @@
 """The elastic patin (prm/patin_elastic.prm, the built-in default scene) runs to
 the end, on one MPI rank and on two, and both give the same statistics: the
 same loop counts and contact point counts in every step, and the same forces
-to solver tolerance. Also runs the 3D block once."""
+to solver tolerance. The same for the neo-Hookean patin with the generalized
+Newton (all three loops folded). Also runs the 3D block once."""
 import os
 import sys
 import sltest
@@ -56,6 +57,25 @@ check(last["points_slip"] == last["points_in_contact"] > 0,
       "the patin slides at the end: every contact point slips")
 check(abs(last["tangential_force_N"] - 0.1 * last["normal_force_N"]) < 1e-8 * last["normal_force_N"],
       "sliding: F_t = mu F_n")
+
+# the generalized Newton on the neo-Hookean patin (coarser mesh), 1 and 2 ranks
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_neo_hookean.prm")) as f:
+    neo = f.read() + "".join(
+        f"\nsubsection Nonlinear solver\n  subsection {loop}\n    set Method = newton\n  end\nend\n"
+        for loop in ("Geometry loop", "Friction loop", "Status loop"))
+neo += "\nsubsection Geometry\n  subsection block\n    set Global refinements = 3\n  end\nend\n"
+newton_runs = {}
+for ranks in (1, 2):
+    out = f"{workdir}/newton-np{ranks}"
+    sltest.run(executable, neo + sltest.QUIET_OUTPUT, out, ranks=ranks)
+    newton_runs[ranks] = sltest.read_csv(out + "/output/statistics.csv")
+same_counts = len(newton_runs[1]) == len(newton_runs[2]) and all(
+    one[c] == two[c] for one, two in zip(newton_runs[1], newton_runs[2]) for c in counts)
+check(same_counts, f"generalized Newton: the same loop and point counts on 1 and 2 ranks in "
+      f"{len(newton_runs[1])} steps")
+worst = max(abs(one[f] - two[f]) / abs(one["normal_force_N"])
+            for one, two in zip(newton_runs[1], newton_runs[2]) for f in forces)
+check(worst < 1e-9, f"generalized Newton: the same forces on 1 and 2 ranks (max difference {worst:.1e} of F_n)")
 
 # 3D: a block on a rigid plane, pressed then slid
 text3d = base.replace("set Dimension = 2", "set Dimension = 3")
