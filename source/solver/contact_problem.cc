@@ -770,10 +770,12 @@ namespace StabilizedLagrangian
             const Tensor<2, dim - 1> friction_coupling    = point.friction_coupling();
             const double             pressure_compliance  = point.pressure_compliance();
             const Tensor<2, dim - 1> semi_block           = point.semi_multiplier_block();
+            // ∂T/∂λ_n from the linearised threshold. The Λ rows keep their weight
+            // s/r_t fixed at the iterate (doc/formulation.md): the derivative of the
+            // weight, (s'/r_t)(Λ − P_B(ĝ)), vanishes at the solution and, large
+            // away from it when r_t is small, only spoils the Newton steps.
             const Tensor<1, dim - 1> traction_slope =
                 point.tangential_traction_pressure_derivative();
-            const Tensor<1, dim - 1> semi_slope =
-                point.semi_multiplier_residual_pressure_derivative();
             for (unsigned int i = 0; i < n_u_cell; ++i)
               {
                 for (unsigned int j = 0; j < n_u_cell; ++j)
@@ -817,8 +819,6 @@ namespace StabilizedLagrangian
                     block = pressure_compliance;
                   else if (ca > 0 && cb > 0)
                     block = semi_block[ca - 1][cb - 1];
-                  else if (ca > 0)
-                    block = semi_slope[ca - 1];
                   local_matrix(n_u_cell + a, n_u_cell + b) += w * block * psi[a] * psi[b];
                 }
           }

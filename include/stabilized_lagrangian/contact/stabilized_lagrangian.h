@@ -21,7 +21,7 @@ namespace StabilizedLagrangian
      * set by r_t ℓ, not by μ/h.
      */
     constexpr double automatic_r_n_constant = 1.;
-    constexpr double automatic_r_t_constant = 3.;
+    constexpr double automatic_r_t_constant = 0.03;
 
     /** @brief Augmented pressure λ̂ = λ_n − r_n g_n (compression positive). */
     inline double
@@ -109,8 +109,8 @@ namespace StabilizedLagrangian
      *
      * The nested fixed points freeze χ and s; the generalized Newton evaluates
      * them at the current iterate, which gives the same coefficients (χ is
-     * piecewise constant) plus, when s = s(λ_n) is linearised, the derivatives
-     * with respect to λ_n of the tangential traction and of the Λ residual.
+     * piecewise constant) plus, when s = s(λ_n) is linearised, the derivative
+     * of the tangential traction with respect to λ_n.
      *
      * @tparam n number of tangential components, dim − 1
      */
@@ -217,13 +217,6 @@ namespace StabilizedLagrangian
       tangential_traction_pressure_derivative() const
       {
         return -chi_f * ds * projected;
-      }
-
-      /** @brief ∂(Λ residual)/∂λ_n, −χ_f (ds/dλ_n)/r_t (Λ − P_B(ĝ)); zero with s frozen. */
-      Tensor<1, n>
-      semi_multiplier_residual_pressure_derivative() const
-      {
-        return -chi_f * (ds / r_t) * (semi - projected);
       }
 
       /** @brief The λ_n–λ_n block, −(1−χ)/r_n. */
