@@ -8,13 +8,29 @@
 #include <stabilized_lagrangian/parameters.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace StabilizedLagrangian
 {
   namespace Parameters
   {
+    std::optional<types::boundary_id>
+    boundary_id_or_name(const std::string &entry, const std::string &name)
+    {
+      if (entry.empty())
+        throw InputError(name + ": an empty boundary.");
+      if (entry.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+      const unsigned long id = std::stoul(entry);
+      if (id >= numbers::internal_face_boundary_id)
+        throw InputError(name + " = " + entry + ": a boundary id must be below " +
+                         std::to_string(numbers::internal_face_boundary_id) + ".");
+      return static_cast<types::boundary_id>(id);
+    }
+
     void
     Contact::declare_parameters(ParameterHandler  &prm,
                                 const std::string &fe_pairs,
@@ -23,9 +39,10 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Contact");
       prm.declare_entry("Contact boundary ids",
                         "2",
-                        Patterns::List(Patterns::Integer(0, 255), 1),
-                        "Boundary ids of the slave contact surface Γc, which carries the "
-                        "multipliers.");
+                        Patterns::List(Patterns::Anything(), 1),
+                        "Boundaries of the slave contact surface Γc, which carries the "
+                        "multipliers: boundary ids, or names of the mesh's boundaries (the "
+                        "physical groups of a Gmsh mesh).");
       prm.declare_entry("r_n",
                         "1e4",
                         Patterns::Anything(),
@@ -66,8 +83,15 @@ namespace StabilizedLagrangian
     {
       prm.enter_subsection("Contact");
       boundary_ids.clear();
-      for (const auto &id : Utilities::split_string_list(prm.get("Contact boundary ids")))
-        boundary_ids.insert(Utilities::string_to_int(id));
+      boundary_names.clear();
+      for (const auto &entry : Utilities::split_string_list(prm.get("Contact boundary ids")))
+        {
+          const auto id = boundary_id_or_name(entry, "Contact/Contact boundary ids");
+          if (id)
+            boundary_ids.insert(*id);
+          else
+            boundary_names.push_back(entry);
+        }
       // a positive number, or `automatic` (times a positive factor)
       const auto parse_parameter = [&prm](const std::string &name,
                                           const std::string &unit,
@@ -123,8 +147,9 @@ namespace StabilizedLagrangian
           prm.enter_subsection("Dirichlet " + std::to_string(i));
           prm.declare_entry("Boundary id",
                             "-1",
-                            Patterns::Integer(-1, 255),
-                            "Boundary id with a prescribed displacement; -1: slot unused.");
+                            Patterns::Anything(),
+                            "Boundary with a prescribed displacement: its id, or the name of a "
+                            "boundary of the mesh (a Gmsh physical group); -1: slot unused.");
           prm.declare_entry("Components",
                             dim == 2 ? "x, y" : "x, y, z",
                             Patterns::MultipleSelection(component_names<dim>()),
@@ -139,8 +164,9 @@ namespace StabilizedLagrangian
           prm.enter_subsection("Neumann " + std::to_string(i));
           prm.declare_entry("Boundary id",
                             "-1",
-                            Patterns::Integer(-1, 255),
-                            "Boundary id with a prescribed traction; -1: slot unused.");
+                            Patterns::Anything(),
+                            "Boundary with a prescribed traction: its id, or the name of a "
+                            "boundary of the mesh (a Gmsh physical group); -1: slot unused.");
           prm.enter_subsection("Traction");
           Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
           prm.leave_subsection();
@@ -186,13 +212,16 @@ namespace StabilizedLagrangian
         {
           const std::string slot = "Dirichlet " + std::to_string(i);
           prm.enter_subsection(slot);
-          const int id = prm.get_integer("Boundary id");
-          if (id >= 0)
+          const std::string boundary = Utilities::trim(prm.get("Boundary id"));
+          if (boundary != "-1")
             {
               std::vector<bool> mask(dim, false);
               for (const auto &c : Utilities::split_string_list(prm.get("Components")))
                 mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
-              dirichlet.push_back(DirichletCondition<dim>{static_cast<types::boundary_id>(id),
+              const auto id =
+                  boundary_id_or_name(boundary, "Boundary conditions/" + slot + "/Boundary id");
+              dirichlet.push_back(DirichletCondition<dim>{id.value_or(0),
+                                                          id ? "" : boundary,
                                                           ComponentMask(mask),
                                                           parse_function(slot, "Displacement")});
             }
@@ -202,10 +231,14 @@ namespace StabilizedLagrangian
         {
           const std::string slot = "Neumann " + std::to_string(i);
           prm.enter_subsection(slot);
-          const int id = prm.get_integer("Boundary id");
-          if (id >= 0)
-            neumann.push_back(NeumannCondition<dim>{static_cast<types::boundary_id>(id),
-                                                    parse_function(slot, "Traction")});
+          const std::string boundary = Utilities::trim(prm.get("Boundary id"));
+          if (boundary != "-1")
+            {
+              const auto id =
+                  boundary_id_or_name(boundary, "Boundary conditions/" + slot + "/Boundary id");
+              neumann.push_back(NeumannCondition<dim>{
+                  id.value_or(0), id ? "" : boundary, parse_function(slot, "Traction")});
+            }
           prm.leave_subsection();
         }
       prm.leave_subsection();
@@ -483,9 +516,27 @@ namespace StabilizedLagrangian
       }
     } // namespace
 
+    namespace
+    {
+      std::string parameter_file_directory = ".";
+    }
+
+    std::string
+    input_path(const std::string &path)
+    {
+      if (path.empty() || std::filesystem::path(path).is_absolute() ||
+          std::filesystem::exists(path))
+        return path;
+      return (std::filesystem::path(parameter_file_directory) / path).string();
+    }
+
     void
     parse(ParameterHandler &prm, const std::string &text, const bool is_file)
     {
+      if (is_file)
+        parameter_file_directory = std::filesystem::path(text).parent_path().string();
+      if (parameter_file_directory.empty())
+        parameter_file_directory = ".";
       const std::string content = is_file ? read_file(text) : text;
       try
         {

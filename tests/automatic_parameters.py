@@ -40,8 +40,7 @@ def run(name, text):
 
 for prm in sorted(glob.glob(os.path.join(root, "prm", "*.prm"))):
     scene = os.path.splitext(os.path.basename(prm))[0]
-    with open(prm) as f:
-        text = f.read()
+    text = sltest.read_prm(prm)
     results = {algorithm: run(f"{scene}, automatic, {algorithm}", text + AUTOMATIC + extra)
                for algorithm, extra in (("nested", ""), ("newton", NEWTON))}
     if results["nested"]:

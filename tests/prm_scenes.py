@@ -11,8 +11,7 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 for prm in sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "prm", "*.prm"))):
     name = os.path.splitext(os.path.basename(prm))[0]
-    with open(prm) as f:
-        text = f.read()
+    text = sltest.read_prm(prm)
     out = f"{workdir}/{name}"
     if not sltest.run_checked(executable, text, out, check, name):
         continue

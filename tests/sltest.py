@@ -1,6 +1,7 @@
 """Helpers for the scene tests: run the program on a parameter file and read its CSV output."""
 import csv
 import os
+import re
 import subprocess
 import sys
 
@@ -49,6 +50,17 @@ def scene(name, **replacements):
     for key, value in {**defaults, **replacements}.items():
         text = text.replace("@" + key + "@", str(value))
     return text
+
+
+def read_prm(path):
+    """The text of a parameter file, with the relative mesh files it names made absolute (the
+    tests run it from another directory)."""
+    with open(path) as f:
+        text = f.read()
+    directory = os.path.dirname(os.path.abspath(path))
+    return re.sub(r"(set Mesh file\s*=\s*)(\S+)",
+                  lambda m: m.group(1) + (m.group(2) if os.path.isabs(m.group(2))
+                                          else os.path.join(directory, m.group(2))), text)
 
 
 def read_csv(path):

@@ -7,6 +7,7 @@
 #include <deal.II/fe/component_mask.h>
 
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -29,10 +30,19 @@ namespace StabilizedLagrangian
       gauss_lobatto
     };
 
+    /**
+     * @brief A boundary given in the prm: its id if @p entry is a number,
+     * nothing if it is a name (resolved once the mesh is known); InputError
+     * naming the entry @p name if the id is out of range.
+     */
+    std::optional<types::boundary_id>
+    boundary_id_or_name(const std::string &entry, const std::string &name);
+
     /** @brief `Contact` subsection: Γc, augmentation parameters, FE pair. */
     struct Contact
     {
       std::set<types::boundary_id> boundary_ids;
+      std::vector<std::string>     boundary_names; ///< mesh boundary names, resolved by the run
       double                       r_n = 0.; ///< the value used (set by the run when automatic)
       double                       r_t = 0.;
       bool                         r_n_automatic = false;
@@ -53,15 +63,17 @@ namespace StabilizedLagrangian
     /** @brief A prescribed displacement on some components of a boundary. */
     template <int dim> struct DirichletCondition
     {
-      types::boundary_id                              boundary_id;
-      ComponentMask                                   components;
+      types::boundary_id boundary_id;
+      std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
+      ComponentMask components;
       std::shared_ptr<Functions::ParsedFunction<dim>> displacement;
     };
 
     /** @brief A prescribed traction (MPa) on a boundary. */
     template <int dim> struct NeumannCondition
     {
-      types::boundary_id                              boundary_id;
+      types::boundary_id boundary_id;
+      std::string boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       std::shared_ptr<Functions::ParsedFunction<dim>> traction;
     };
 
@@ -202,5 +214,12 @@ namespace StabilizedLagrangian
      */
     void
     parse(ParameterHandler &prm, const std::string &text, const bool is_file);
+
+    /**
+     * @brief A file named in the parameters: as given if it exists (or is
+     * absolute), else relative to the directory of the parameter file parsed last.
+     */
+    std::string
+    input_path(const std::string &path);
   } // namespace Parameters
 } // namespace StabilizedLagrangian

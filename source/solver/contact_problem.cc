@@ -119,6 +119,33 @@ namespace StabilizedLagrangian
   {
     geometry->create_mesh(triangulation);
 
+    // boundaries given by name: the mesh's names (a Gmsh file's physical groups)
+    const auto names   = geometry->boundary_names();
+    const auto resolve = [&](const std::string &name, const std::string &entry) {
+      const auto found = names.find(name);
+      if (found != names.end())
+        return found->second;
+      std::string groups;
+      for (const auto &[group, id] : names)
+        groups +=
+            (groups.empty() ? "" : ", ") + ("'" + group + "' (id " + std::to_string(id) + ")");
+      std::string bodies;
+      for (const auto &body : geometry->body_names())
+        bodies += (bodies.empty() ? "" : ", ") + ("'" + body + "'");
+      throw InputError(entry + " = '" + name + "': the mesh has no boundary of this name; " +
+                       (names.empty() ? std::string("its boundaries have ids only")
+                                      : "its boundaries are " + groups) +
+                       (bodies.empty() ? "" : "; its bodies are " + bodies) + ".");
+    };
+    for (const auto &name : contact_parameters.boundary_names)
+      contact_parameters.boundary_ids.insert(resolve(name, "Contact/Contact boundary ids"));
+    for (auto &bc : boundary_conditions.dirichlet)
+      if (!bc.boundary_name.empty())
+        bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Dirichlet/Boundary id");
+    for (auto &bc : boundary_conditions.neumann)
+      if (!bc.boundary_name.empty())
+        bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Neumann/Boundary id");
+
     std::set<types::boundary_id> mesh_ids;
     for (const auto id : triangulation.get_boundary_ids())
       mesh_ids.insert(id);

@@ -4,6 +4,10 @@
 
 #include <stabilized_lagrangian/plugins.h>
 
+#include <map>
+#include <string>
+#include <vector>
+
 namespace StabilizedLagrangian
 {
   namespace Geometry
@@ -27,6 +31,24 @@ namespace StabilizedLagrangian
       /** @brief Build the (refined) mesh and set its boundary ids. */
       virtual void
       create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const = 0;
+
+      /**
+       * @brief Names of boundaries (a mesh file's physical groups of dimension
+       * dim − 1) with their boundary ids, known after create_mesh(); the
+       * `Boundary conditions` and `Contact` entries may use them instead of ids.
+       */
+      virtual std::map<std::string, types::boundary_id>
+      boundary_names() const
+      {
+        return {};
+      }
+
+      /** @brief Names of the bodies (physical groups of dimension dim), after create_mesh(). */
+      virtual std::vector<std::string>
+      body_names() const
+      {
+        return {};
+      }
     };
 
     /** @brief The registry of geometries for dimension @p dim. */

@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Scenes from Gmsh: prm/gmsh_block.prm takes the patin's mesh from
+prm/meshes/block.geo (meshed by the Gmsh library at start-up) and names its
+boundaries by the physical groups.
+
+Checks: the Gmsh patin gives the built-in patin's loop counts and forces (the
+two meshes are the same 32 x 16 quadrilaterals), on 1 and 2 MPI ranks; a
+mistyped group name in the contact or a boundary-condition entry stops the run
+with exit 1 and a message naming the entry and listing the groups the file has;
+a missing mesh file and a mesh of triangles are refused with a message."""
+import os
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+prm_dir = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm"))
+gmsh_scene = sltest.read_prm(os.path.join(prm_dir, "gmsh_block.prm"))
+builtin_scene = sltest.read_prm(os.path.join(prm_dir, "patin_elastic.prm"))
+
+runs = {}
+for name, text, ranks in (("built-in", builtin_scene, 1), ("gmsh", gmsh_scene, 1), ("gmsh, 2 ranks", gmsh_scene, 2)):
+    out = os.path.join(workdir, name.replace(" ", "_").replace(",", ""))
+    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, out, ranks=ranks, expect_success=False)
+    check(code == 0, f"{name}: exit code {code}")
+    if code == 0:
+        runs[name] = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))
+    else:
+        print(log[-2000:])
+if len(runs) == 3:
+    reference = runs["built-in"]
+    for name in ("gmsh", "gmsh, 2 ranks"):
+        rows = runs[name]
+        counts = ("geometry_iterations", "friction_iterations", "status_iterations", "newton_iterations",
+                  "points_in_contact", "points_stick", "points_slip")
+        check(len(rows) == len(reference) and all(a[c] == b[c] for a, b in zip(rows, reference) for c in counts),
+              f"{name}: the built-in patin's loop and point counts in {len(rows)} steps")
+        worst = max(abs(a[f] - b[f]) / abs(b["normal_force_N"]) for a, b in zip(rows, reference)
+                    for f in ("normal_force_N", "tangential_force_N", "contact_force_x_N", "contact_force_y_N"))
+        check(worst < 1e-9, f"{name}: the built-in patin's forces (max difference {worst:.1e} of F_n)")
+
+groups = ["'bottom'", "'left'", "'right'", "'top'", "'block'"]
+for entry, old, new in (("Contact/Contact boundary ids", "set Contact boundary ids = bottom",
+                         "set Contact boundary ids = bottm"),
+                        ("Boundary conditions/Dirichlet/Boundary id", "set Boundary id = top",
+                         "set Boundary id = Top")):
+    text = gmsh_scene.replace(old, new)
+    check(text != gmsh_scene, f"the scene has '{old}'")
+    code, log = sltest.run(executable, text, os.path.join(workdir, "mistyped"), expect_success=False)
+    check(code == 1 and entry in log and all(g in log for g in groups),
+          f"mistyped group in {entry}: exit {code}, the message names the entry and lists the groups")
+    print("      " + log.strip().splitlines()[-1][:300])
+
+code, log = sltest.run(executable, gmsh_scene.replace("block.geo", "no_such_file.geo"),
+                       os.path.join(workdir, "missing"), expect_success=False)
+check(code == 1 and "Geometry/gmsh/Mesh file" in log and "cannot open" in log,
+      f"missing mesh file: exit {code}, the message names the entry")
+
+# the same block with triangles: Recombine removed
+with open(os.path.join(prm_dir, "meshes", "block.geo")) as f:
+    triangles = f.read().replace("Recombine Surface{1};", "")
+os.makedirs(os.path.join(workdir, "triangles"), exist_ok=True)
+geo = os.path.join(workdir, "triangles", "triangles.geo")
+with open(geo, "w") as f:
+    f.write(triangles)
+text = gmsh_scene.replace(os.path.join(prm_dir, "meshes", "block.geo"), geo)
+check(geo in text, "the scene names the triangle mesh")
+code, log = sltest.run(executable, text, os.path.join(workdir, "triangles"), expect_success=False)
+check(code == 1 and "simplex cells" in log, f"a mesh of triangles: exit {code}, refused with a message")
+check.finish()
