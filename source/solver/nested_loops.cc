@@ -420,7 +420,12 @@ namespace StabilizedLagrangian
         }
         if (!solved)
           {
-            pcout << "  Newton: the linear solver failed (singular system?)\n";
+            pcout << "  Newton: the linear solver failed: the Newton system is singular. Usual "
+                     "causes: a rigid-body motion the boundary conditions leave free; a sticking "
+                     "contact point whose tangential displacement is prescribed (a Dirichlet "
+                     "condition on a node of the contact boundary, with friction); a pair that "
+                     "violates the inf-sup condition (Q1/P2; Linear solver/Null pivot "
+                     "detection).\n";
             return false;
           }
         newton_constraints.distribute(update);
