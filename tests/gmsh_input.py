@@ -4,7 +4,9 @@ prm/meshes/block.geo (meshed by the Gmsh library at start-up) and names its
 boundaries by the physical groups.
 
 Checks: the Gmsh patin gives the built-in patin's loop counts and forces (the
-two meshes are the same 32 x 16 quadrilaterals), on 1 and 2 MPI ranks; a
+two meshes are the same 32 x 16 quadrilaterals), on 1 and 2 MPI ranks; a 3D
+block of hexahedra (prm/meshes/block3d.geo) pressed by a uniform pressure on
+its face named `top` has the contact pressure p on its face named `bottom`; a
 mistyped group name in the contact or a boundary-condition entry stops the run
 with exit 1 and a message naming the entry and listing the groups the file has;
 a missing mesh file and a mesh of triangles are refused with a message."""
@@ -38,6 +40,61 @@ if len(runs) == 3:
         worst = max(abs(a[f] - b[f]) / abs(b["normal_force_N"]) for a, b in zip(rows, reference)
                     for f in ("normal_force_N", "tangential_force_N", "contact_force_x_N", "contact_force_y_N"))
         check(worst < 1e-9, f"{name}: the built-in patin's forces (max difference {worst:.1e} of F_n)")
+
+# 3D: hexahedra from an extruded .geo, frictionless, symmetry planes by name
+block3d = os.path.join(prm_dir, "meshes", "block3d.geo")
+text3d = f"""set Dimension = 3
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = {block3d}
+  end
+end
+subsection Obstacle
+  subsection plane
+    set Point = 0, 0, 0
+    set Normal = 0, 0, 1
+  end
+end
+subsection Contact
+  set Contact boundary ids = bottom
+  subsection Friction law
+    subsection Coulomb
+      set Friction coefficient = 0
+    end
+  end
+end
+subsection Boundary conditions
+  subsection Dirichlet 1
+    set Boundary id = x min
+    set Components = x
+  end
+  subsection Dirichlet 2
+    set Boundary id = y min
+    set Components = y
+  end
+  subsection Neumann 1
+    set Boundary id = top
+    subsection Traction
+      set Function expression = 0; 0; -100*t
+      set Variable names = x,y,z,t
+    end
+  end
+end
+"""
+for ranks in (1, 2):
+    out = os.path.join(workdir, f"block3d-np{ranks}")
+    code, log = sltest.run(executable, text3d + sltest.QUIET_OUTPUT, out, ranks=ranks, expect_success=False)
+    check(code == 0, f"3D Gmsh block on {ranks} rank(s): exit code {code}")
+    if code != 0:
+        print(log[-2000:])
+        continue
+    force = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]["normal_force_N"]
+    pressures = [row["contact_pressure_MPa"] for row in sltest.last_profile(os.path.join(out, "output"))]
+    check(abs(force - 100 * 100 * 50) < 1e-8 * 100 * 100 * 50,
+          f"3D Gmsh block on {ranks} rank(s): normal force {force:.6f} N = p x area")
+    check(pressures and max(abs(p - 100) for p in pressures) < 1e-8 * 100,
+          f"3D Gmsh block on {ranks} rank(s): contact pressure = p at the {len(pressures)} profile nodes")
 
 groups = ["'bottom'", "'left'", "'right'", "'top'", "'block'"]
 for entry, old, new in (("Contact/Contact boundary ids", "set Contact boundary ids = bottom",
