@@ -2,7 +2,14 @@
 """Stick and slip: a block (nu = 0, so pressing alone causes no tangential
 traction) is pressed by a pressure p, then its top face is pushed sideways by a
 displacement d. Below the sliding load no point slips and |F_t| < mu F_n; well
-above it every point in contact slips and |F_t| = mu F_n to solver tolerance."""
+above it every point in contact slips and |F_t| = mu F_n to solver tolerance.
+
+Then a block pressed while its side x = -50 is held in x (nu = 0.3): the
+corner contact node has its tangential displacement prescribed, so where it
+sticks its friction multiplier is undetermined and the Newton system singular.
+The run must end cleanly (exit 2) with a message that names the cause and
+`Linear solver/Null pivot detection`; with that entry on, it converges to
+F_n = p x length."""
 import sys
 import sltest
 
@@ -43,4 +50,16 @@ for dim in (2, 3):
             profile = sltest.last_profile(out + "/output")
             check(all(row["status"] == 2 for row in profile),
                   f"{dim}D slip: status field is 2 (slip) at all {len(profile)} contact vertices")
+text = sltest.scene(
+    "pressed_block", DIM=2, MU=mu, SLIDE=0.0, NU=0.3, QUADRATURE="Gauss-Lobatto", SUBDIVISIONS="2, 1",
+    REFINEMENTS=2, TANGENTIAL_ID=0, COMPONENTS="x", SLIDE_EXPRESSION="0; 0", VARIABLES="x,y,t",
+    PRESSURE=pressure, TRACTION_EXPRESSION="0; -p*t", STEPS=2, VTU="false")
+code, log = sltest.run(executable, text, f"{workdir}/held-side", expect_success=False)
+check(code == 2 and "tangential displacement is prescribed" in log and "Null pivot detection" in log,
+      f"side held in x: exit code {code}, the message names the cause and the remedy")
+out = f"{workdir}/held-side-null-pivots"
+sltest.run(executable, text + "\nsubsection Linear solver\n  set Null pivot detection = true\nend\n", out)
+fn = sltest.read_csv(out + "/output/statistics.csv")[-1]["normal_force_N"]
+check(abs(fn - pressure * 100.0) < 1e-8 * pressure * 100.0,
+      f"side held in x, null pivot detection: F_n = {fn:.6f} = p x length")
 check.finish()

@@ -423,9 +423,10 @@ namespace StabilizedLagrangian
             pcout << "  Newton: the linear solver failed: the Newton system is singular. Usual "
                      "causes: a rigid-body motion the boundary conditions leave free; a sticking "
                      "contact point whose tangential displacement is prescribed (a Dirichlet "
-                     "condition on a node of the contact boundary, with friction); a pair that "
-                     "violates the inf-sup condition (Q1/P2; Linear solver/Null pivot "
-                     "detection).\n";
+                     "condition on a node of the contact boundary, with friction: its friction "
+                     "multiplier is then undetermined, and `Linear solver/Null pivot detection "
+                     "= true` picks one of the equivalent values); a pair that violates the "
+                     "inf-sup condition (Q1/P2).\n";
             return false;
           }
         newton_constraints.distribute(update);
