@@ -60,7 +60,7 @@ subsection Contact
   set Contact boundary ids = bottom
   subsection Friction law
     subsection Coulomb
-      set Friction coefficient = 0
+      set Friction coefficient = @MU@
     end
   end
 end
@@ -82,19 +82,28 @@ subsection Boundary conditions
   end
 end
 """
-for ranks in (1, 2):
-    out = os.path.join(workdir, f"block3d-np{ranks}")
-    code, log = sltest.run(executable, text3d + sltest.QUIET_OUTPUT, out, ranks=ranks, expect_success=False)
-    check(code == 0, f"3D Gmsh block on {ranks} rank(s): exit code {code}")
+# with friction, the vertices on the symmetry planes have a prescribed tangential
+# displacement: their friction multiplier is constrained (tests/stick_slip.py)
+for ranks, mu in ((1, 0), (2, 0), (1, 0.3), (2, 0.3)):
+    out = os.path.join(workdir, f"block3d-np{ranks}-mu{mu}")
+    code, log = sltest.run(executable, text3d.replace("@MU@", str(mu)) + sltest.QUIET_OUTPUT, out, ranks=ranks,
+                           expect_success=False)
+    check(code == 0, f"3D Gmsh block, mu = {mu}, on {ranks} rank(s): exit code {code}")
     if code != 0:
         print(log[-2000:])
         continue
-    force = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]["normal_force_N"]
+    last = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]
+    force = last["normal_force_N"]
     pressures = [row["contact_pressure_MPa"] for row in sltest.last_profile(os.path.join(out, "output"))]
     check(abs(force - 100 * 100 * 50) < 1e-8 * 100 * 100 * 50,
-          f"3D Gmsh block on {ranks} rank(s): normal force {force:.6f} N = p x area")
+          f"3D Gmsh block, mu = {mu}, on {ranks} rank(s): normal force {force:.6f} N = p x area")
+    check(last["tangential_force_N"] <= mu * force * (1 + 1e-8),
+          f"3D Gmsh block, mu = {mu}: F_t = {last['tangential_force_N']:.4f} N <= mu F_n")
+    if mu > 0:
+        continue
     check(pressures and max(abs(p - 100) for p in pressures) < 1e-8 * 100,
-          f"3D Gmsh block on {ranks} rank(s): contact pressure = p at the {len(pressures)} profile nodes")
+          f"3D Gmsh block, mu = 0, on {ranks} rank(s): contact pressure = p at the {len(pressures)} "
+          "profile nodes")
 
 groups = ["'bottom'", "'left'", "'right'", "'top'", "'block'"]
 for entry, old, new in (("Contact/Contact boundary ids", "set Contact boundary ids = bottom",

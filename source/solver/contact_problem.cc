@@ -286,6 +286,9 @@ namespace StabilizedLagrangian
     newton_constraints.reinit(locally_relevant);
     newton_constraints.merge(hanging_constraints);
     add_homogeneous_dirichlet_constraints(newton_constraints);
+    add_prescribed_slip_constraints(newton_constraints);
+    newton_constraints.make_consistent_in_parallel(
+        locally_owned, locally_relevant, mpi_communicator);
     newton_constraints.close();
 
     system_rhs.reinit(locally_owned, mpi_communicator);
@@ -387,6 +390,51 @@ namespace StabilizedLagrangian
                                                Functions::ZeroFunction<dim>(dim),
                                                constraints,
                                                bc.components);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
+  {
+    if (!friction_law->has_friction() || !obstacle->is_flat())
+      return;
+    const auto tangents = obstacle->project(Point<dim>()).tangents;
+    // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)
+    std::vector<unsigned int> m_component(fe_m->n_dofs_per_vertex());
+    for (unsigned int i = 0; i < m_component.size(); ++i)
+      m_component[i] = fe_m->system_to_component_index(i).first;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            {
+              const auto face   = cell->face(f);
+              const auto face_m = typename DoFHandler<dim>::active_cell_iterator(
+                                      &triangulation, cell->level(), cell->index(), &dof_handler_m)
+                                      ->face(f);
+              for (const unsigned int v : face->vertex_indices())
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  {
+                    // t_α·u is prescribed when every component it involves is
+                    bool prescribed = true;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (std::abs(tangents[a][d]) > 1e-12)
+                        {
+                          const auto u = face->vertex_dof_index(v, d);
+                          prescribed &= constraints.is_constrained(u) &&
+                                        !hanging_constraints.is_constrained(u);
+                        }
+                    if (!prescribed)
+                      continue;
+                    for (unsigned int i = 0; i < m_component.size(); ++i)
+                      if (m_component[i] == a + 1)
+                        {
+                          const auto m = n_u + face_m->vertex_dof_index(v, i);
+                          if (!constraints.is_constrained(m))
+                            constraints.add_line(m);
+                        }
+                  }
+            }
   }
 
   template <int dim>

@@ -272,6 +272,14 @@ namespace StabilizedLagrangian
     /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
     void
     add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
+    /**
+     * Λ_α = 0 at the vertices of Γc whose displacement along the (fixed) tangent
+     * t_α of a plane obstacle is prescribed: there the stick condition leaves
+     * Λ_α undetermined (the Dirichlet reaction carries the friction) and the
+     * Newton system would be singular. On a symmetry plane, 0 is the symmetric value.
+     */
+    void
+    add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const;
     /** The multiplier of a coarse-mesh pair: multilinear on the parents of the contact faces. */
     void
     add_multiplier_coarsening_constraints(AffineConstraints<double> &constraints) const;
