@@ -15,6 +15,7 @@ import argparse
 import csv
 import os
 import subprocess
+import sys
 import time
 
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
@@ -27,19 +28,12 @@ parser.add_argument("--set", action="append", default=[], metavar="SECTION/ENTRY
 args = parser.parse_args()
 
 
-def nested_set(setting):
-    """'Section/Sub/Entry=value' as nested prm subsections."""
-    path, value = setting.split("=", 1)
-    *sections, entry = path.split("/")
-    return ("\n" + "".join(f"subsection {s}\n" for s in sections) + f"set {entry} = {value}\n" +
-            "end\n" * len(sections))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from robustness_map import GENERALIZED_NEWTON as NEWTON, nested_set  # noqa: E402
 
-
-SETTINGS = "".join(nested_set(s) for s in args.set)
+SETTINGS = "".join(nested_set(*setting.split("=", 1)) for setting in args.set)
 executable = os.path.abspath(args.executable)
 
-NEWTON = "".join(f"\nsubsection Nonlinear solver\n  subsection {loop}\n    set Method = newton\n  end\nend\n"
-                 for loop in ("Geometry loop", "Friction loop", "Status loop"))
 ONE_STEP = "\nsubsection Load stepping\n  set Number of load steps = 1\nend\n"
 QUIET = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\n  set Write profiles = false\nend\n"
 scenes = [("patin_elastic", "elastic patin"), ("patin_neo_hookean", "neo-Hookean patin"),

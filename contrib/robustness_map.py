@@ -65,14 +65,18 @@ def nested_set(path, value):
     return "\n" + "\n".join(lines) + "\n"
 
 
+# the geometry, friction and status loops all folded into the generalized Newton
+GENERALIZED_NEWTON = "".join(nested_set(f"Nonlinear solver/{loop}/Method", "newton")
+                             for loop in ("Geometry loop", "Friction loop", "Status loop"))
+
+
 def build_scene(scene_path, settings=(), algorithm="nested", max_cuts=0):
     """The scene's parameter text with the step cuts, the algorithm and the 'Section/Entry=value' settings."""
     with open(scene_path) as f:
         text = f.read()
     text += nested_set("Load stepping/Maximum step cuts", max_cuts)
     if algorithm == "newton":
-        for loop in ("Geometry loop", "Friction loop", "Status loop"):
-            text += nested_set(f"Nonlinear solver/{loop}/Method", "newton")
+        text += GENERALIZED_NEWTON
     elif algorithm != "nested":
         raise ValueError(f"unknown algorithm '{algorithm}' (nested or newton)")
     for setting in settings:
@@ -104,7 +108,7 @@ def has_nan(directory):
     return False
 
 
-class _Running:
+class Running:
     """The process groups of the cases being run, to kill them if the sweep is interrupted."""
 
     def __init__(self):
@@ -187,34 +191,45 @@ def describe(row):
     return text + f", {row['wall_time_s']:.1f} s"
 
 
-def sweep(executable, scene_text, rn_values, rt_values, workdir, jobs=None, timeout=600):
-    """Run scene_text for every r_n x r_t, jobs at a time, in workdir/rnII_rtJJ; the rows, r_t-major order.
-
-    Contact/r_n, Contact/r_t and the output settings are appended to scene_text;
-    a case running longer than timeout seconds is killed with its process group."""
+def run_cases(executable, cases, jobs=None, timeout=600, label=lambda key, row: describe(row)):
+    """cases: list of (key, text, case_dir); run them jobs at a time with run_case, printing
+    label(key, row) as each ends; {key: row}. A case running longer than timeout seconds is
+    killed with its process group, and so are the running ones if the caller is interrupted."""
     executable = os.path.abspath(executable)
-    cases = [(i, j, rn, rt) for j, rt in enumerate(rt_values) for i, rn in enumerate(rn_values)]
-    running = _Running()
+    running = Running()
     rows = {}
     pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs or os.cpu_count())
     try:
-        futures = {}
-        for i, j, rn, rt in cases:
-            # repr: the value run is the value recorded
-            text = (scene_text + nested_set("Contact/r_n", repr(rn)) + nested_set("Contact/r_t", repr(rt))
-                    + OUTPUT_SECTION)
-            case_dir = os.path.join(workdir, f"rn{i:02d}_rt{j:02d}")
-            futures[pool.submit(run_case, executable, text, case_dir, timeout, running)] = (rn, rt)
+        futures = {pool.submit(run_case, executable, text, case_dir, timeout, running): key
+                   for key, text, case_dir in cases}
         for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            rn, rt = futures[future]
-            rows[rn, rt] = dict(r_n=rn, r_t=rt, **future.result())
-            print(f"[{done}/{len(cases)}] {describe(rows[rn, rt])}", flush=True)
+            key = futures[future]
+            rows[key] = future.result()
+            print(f"[{done}/{len(cases)}] {label(key, rows[key])}", flush=True)
     except BaseException:  # e.g. Ctrl-C: the cases run in their own sessions, so kill them here
         pool.shutdown(wait=False, cancel_futures=True)
         running.kill_all()
         raise
     pool.shutdown()
-    return [rows[rn, rt] for _, _, rn, rt in cases]
+    return rows
+
+
+def sweep(executable, scene_text, rn_values, rt_values, workdir, jobs=None, timeout=600):
+    """Run scene_text for every r_n x r_t, jobs at a time, in workdir/rnII_rtJJ; the rows, r_t-major order.
+
+    Contact/r_n, Contact/r_t and the output settings are appended to scene_text;
+    a case running longer than timeout seconds is killed with its process group."""
+    grid = [(i, j, rn, rt) for j, rt in enumerate(rt_values) for i, rn in enumerate(rn_values)]
+    # repr: the value run is the value recorded
+    cases = [((rn, rt), scene_text + nested_set("Contact/r_n", repr(rn)) + nested_set("Contact/r_t", repr(rt))
+              + OUTPUT_SECTION, os.path.join(workdir, f"rn{i:02d}_rt{j:02d}")) for i, j, rn, rt in grid]
+
+    def with_parameters(key, row):
+        row.update(r_n=key[0], r_t=key[1])
+        return describe(row)
+
+    rows = run_cases(executable, cases, jobs, timeout, with_parameters)
+    return [rows[rn, rt] for _, _, rn, rt in grid]
 
 
 def write_csv(rows, path):

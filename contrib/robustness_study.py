@@ -42,7 +42,6 @@ import re
 import shlex
 import sys
 import time
-import concurrent.futures
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -410,8 +409,7 @@ def automatic_scene(scene_path, algorithm, factor):
     with open(scene_path) as f:
         text = f.read()
     if algorithm == "newton":
-        for loop in ("Geometry loop", "Friction loop", "Status loop"):
-            text += nested_set(f"Nonlinear solver/{loop}/Method", "newton")
+        text += robustness_map.GENERALIZED_NEWTON
     for entry, value in (("r_n", "automatic"), ("r_t", "automatic"), ("Automatic r_n factor", repr(factor)),
                          ("Automatic r_t factor", repr(factor))):
         text += nested_set(f"Contact/{entry}", value)
@@ -433,26 +431,15 @@ def used_parameters(case_dir):
 
 
 def run_cases(executable, cases, jobs, timeout):
-    """cases: list of (key, text, case_dir); runs them jobs at a time with robustness_map.run_case; {key: row}."""
-    executable = os.path.abspath(executable)
-    running = robustness_map._Running()
-    rows = {}
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs or os.cpu_count())
-    try:
-        futures = {pool.submit(robustness_map.run_case, executable, text, case_dir, timeout, running):
-                   (key, case_dir) for key, text, case_dir in cases}
-        for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
-            key, case_dir = futures[future]
-            row = future.result()
-            row.update(used_parameters(case_dir))
-            rows[key] = row
-            print(f"[{done}/{len(cases)}] {key}: {robustness_map.describe(row)}", flush=True)
-    except BaseException:  # e.g. Ctrl-C: kill the running cases, which run in their own sessions
-        pool.shutdown(wait=False, cancel_futures=True)
-        running.kill_all()
-        raise
-    pool.shutdown()
-    return rows
+    """cases: list of (key, text, case_dir); robustness_map.run_cases with the r_n, r_t each case
+    printed (run_summary.csv has them only when it converged); {key: row}."""
+    case_dirs = {key: case_dir for key, _, case_dir in cases}
+
+    def with_parameters(key, row):
+        row.update(used_parameters(case_dirs[key]))
+        return f"{key}: {robustness_map.describe(row)}"
+
+    return robustness_map.run_cases(executable, cases, jobs, timeout, with_parameters)
 
 
 def run_automatic(args):

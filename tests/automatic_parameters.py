@@ -18,8 +18,6 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 AUTOMATIC = "\nsubsection Contact\n  set r_n = automatic\n  set r_t = automatic\nend\n"
-NEWTON = "".join(f"\nsubsection Nonlinear solver\n  subsection {loop}\n    set Method = newton\n  end\nend\n"
-                 for loop in ("Geometry loop", "Friction loop", "Status loop"))
 
 
 def run(name, text):
@@ -42,7 +40,7 @@ for prm in sorted(glob.glob(os.path.join(root, "prm", "*.prm"))):
     scene = os.path.splitext(os.path.basename(prm))[0]
     text = sltest.read_prm(prm)
     results = {algorithm: run(f"{scene}, automatic, {algorithm}", text + AUTOMATIC + extra)
-               for algorithm, extra in (("nested", ""), ("newton", NEWTON))}
+               for algorithm, extra in (("nested", ""), ("newton", sltest.GENERALIZED_NEWTON))}
     if results["nested"]:
         log = results["nested"][2]
         check(re.search(r"r_n = automatic: .* N/mm\^3", log) and re.search(r"r_t = automatic: .* 1/mm", log),
@@ -63,7 +61,7 @@ with open(os.path.join(root, "prm", "patin_elastic.prm")) as f:
 with open(os.path.join(root, "prm", "hertz_cylinder.prm")) as f:
     hertz = f.read()
 local = int(re.search(r"set Local refinements\s*=\s*(\d+)", hertz).group(1))
-for algorithm, extra in (("nested", ""), ("newton", NEWTON)):
+for algorithm, extra in (("nested", ""), ("newton", sltest.GENERALIZED_NEWTON)):
     r_n = []
     for refinements in (3, 4, 5, 6):
         result = run(f"elastic patin, {refinements} refinements, {algorithm}",

@@ -28,37 +28,16 @@ check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 TIME_LIMIT = 300  # seconds per run; the slowest converging run takes about 3 s
 
-NEWTON = """
-subsection Nonlinear solver
-  subsection Geometry loop
-    set Method = newton
-  end
-  subsection Friction loop
-    set Method = newton
-  end
-  subsection Status loop
-    set Method = newton
-  end
-end
-"""
-
-
-def section(path, value):
-    """`Section/Sub/Entry=value` as nested prm subsections."""
-    *sections, entry = path.split("/")
-    return ("".join(f"subsection {s}\n" for s in sections) + f"set {entry} = {value}\n" +
-            "end\n" * len(sections))
-
-
 def patin(name, refinements=2):
     with open(os.path.join(root, "prm", f"patin_{name}.prm")) as f:
         text = f.read()
-    return (text + section("Geometry/block/Global refinements", refinements) +
-            section("Contact/r_n", "automatic") + section("Contact/r_t", "automatic"))
+    return (text + sltest.nested_set("Geometry/block/Global refinements", refinements) +
+            sltest.nested_set("Contact/r_n", "automatic") + sltest.nested_set("Contact/r_t", "automatic"))
 
 
 def factors(fn, ft):
-    return section("Contact/Automatic r_n factor", fn) + section("Contact/Automatic r_t factor", ft)
+    return (sltest.nested_set("Contact/Automatic r_n factor", fn) +
+            sltest.nested_set("Contact/Automatic r_t factor", ft))
 
 
 cases = []  # (name, prm text, reference case name or None, friction coefficient)
@@ -69,15 +48,15 @@ for material in ("elastic", "neo_hookean"):
                       f"{material} automatic", 0.1))
 for mu in (0, 0.01, 1, 10):
     cases.append((f"mu = {mu}", patin("elastic") +
-                  section("Contact/Friction law/Coulomb/Friction coefficient", mu), None, mu))
+                  sltest.nested_set("Contact/Friction law/Coulomb/Friction coefficient", mu), None, mu))
 for nu in (0.49, 0.4999):
     cases.append((f"nu = {nu}", patin("elastic") +
-                  section("Material/linear elastic/Poisson's ratio", nu), None, 0.1))
+                  sltest.nested_set("Material/linear elastic/Poisson's ratio", nu), None, 0.1))
 cases.append(("very coarse mesh", patin("elastic", 0), None, 0.1))
 cases.append(("very fine mesh", patin("elastic", 6), None, 0.1))
 
 summaries = {}
-for algorithm, extra in (("nested", ""), ("newton", NEWTON)):
+for algorithm, extra in (("nested", ""), ("newton", sltest.GENERALIZED_NEWTON)):
     for name, text, reference, mu in cases:
         label = f"{name}, {algorithm}"
         out = os.path.join(workdir, algorithm, name.replace(" ", "_").replace(",", ""))

@@ -31,19 +31,6 @@ subsection Nonlinear solver
   end
 end
 """
-NEWTON = """
-subsection Nonlinear solver
-  subsection Geometry loop
-    set Method = newton
-  end
-  subsection Friction loop
-    set Method = newton
-  end
-  subsection Status loop
-    set Method = newton
-  end
-end
-"""
 
 
 def patin(name):
@@ -116,7 +103,7 @@ scenes = [("elastic patin", patin("elastic")), ("neo-Hookean patin", patin("neo_
 for name, text in scenes:
     tag = name.replace(" ", "_")
     runs = {}
-    for algorithm, extra in (("nested", TIGHT), ("newton", NEWTON)):
+    for algorithm, extra in (("nested", TIGHT), ("newton", sltest.GENERALIZED_NEWTON)):
         out = f"{workdir}/{tag}/{algorithm}"
         if not sltest.run_checked(executable, text + extra, out, check, f"{name}, {algorithm}"):
             break

@@ -60,9 +60,7 @@ check(abs(last["tangential_force_N"] - 0.1 * last["normal_force_N"]) < 1e-8 * la
 
 # the generalized Newton on the neo-Hookean patin (coarser mesh), 1 and 2 ranks
 with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_neo_hookean.prm")) as f:
-    neo = f.read() + "".join(
-        f"\nsubsection Nonlinear solver\n  subsection {loop}\n    set Method = newton\n  end\nend\n"
-        for loop in ("Geometry loop", "Friction loop", "Status loop"))
+    neo = f.read() + sltest.GENERALIZED_NEWTON
 neo += "\nsubsection Geometry\n  subsection block\n    set Global refinements = 3\n  end\nend\n"
 newton_runs = {}
 for ranks in (1, 2):

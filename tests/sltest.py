@@ -28,6 +28,17 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=120
     return result.returncode, output
 
 
+def nested_set(path, value):
+    """'Section/Sub/Entry', value -> the prm text setting it in nested subsections."""
+    *sections, entry = path.split("/")
+    return ("\n" + "".join(f"subsection {s}\n" for s in sections) + f"set {entry} = {value}\n" +
+            "end\n" * len(sections))
+
+
+# the geometry, friction and status loops all folded into the generalized Newton
+GENERALIZED_NEWTON = "".join(nested_set(f"Nonlinear solver/{loop}/Method", "newton")
+                             for loop in ("Geometry loop", "Friction loop", "Status loop"))
+
 QUIET_OUTPUT = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
 
 

@@ -103,13 +103,8 @@ namespace StabilizedLagrangian
         if (extension != ".msh" && extension != ".geo")
           throw InputError("Geometry/gmsh/Mesh file: '" + file +
                            "' is neither a .msh nor a .geo file.");
-      }
-
-      void
-      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
-      {
         std::string msh_file = file;
-        if (std::filesystem::path(file).extension() == ".geo")
+        if (extension == ".geo")
           {
             // every rank meshes its own copy: the .geo is small and Gmsh is deterministic
             msh_file = (std::filesystem::temp_directory_path() /
@@ -118,11 +113,41 @@ namespace StabilizedLagrangian
                            .string();
             mesh_geo_file(file, msh_file, dim);
           }
-        for (const auto &[key, tag] : read_physical_names(msh_file))
-          (key.first == dim ? bodies : boundaries)[key.second] = tag;
+        read_mesh(msh_file);
+        if (msh_file != file)
+          std::filesystem::remove(msh_file);
+      }
 
-        Triangulation<dim> coarse;
-        GridIn<dim>        grid_in;
+      void
+      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      {
+        triangulation.copy_triangulation(coarse);
+        triangulation.refine_global(refinements);
+      }
+
+      std::map<std::string, types::boundary_id>
+      boundary_names() const override
+      {
+        return boundaries;
+      }
+
+      std::vector<std::string>
+      body_names() const override
+      {
+        return bodies;
+      }
+
+    private:
+      /** The coarse mesh and the names of its physical groups. */
+      void
+      read_mesh(const std::string &msh_file)
+      {
+        for (const auto &[key, tag] : read_physical_names(msh_file))
+          if (key.first == dim)
+            bodies.push_back(key.second);
+          else
+            boundaries[key.second] = static_cast<types::boundary_id>(tag);
+        GridIn<dim> grid_in;
         grid_in.attach_triangulation(coarse);
         std::ifstream in(msh_file);
         try
@@ -134,39 +159,18 @@ namespace StabilizedLagrangian
             throw InputError("Geometry/gmsh/Mesh file: cannot read '" + file +
                              "' as a Gmsh mesh: " + Utilities::trim(error.what()));
           }
-        if (msh_file != file)
-          std::filesystem::remove(msh_file);
         for (const auto &cell : coarse.active_cell_iterators())
           if (!cell->reference_cell().is_hyper_cube())
             throw InputError("Geometry/gmsh/Mesh file: '" + file +
                              "' has simplex cells; the finite elements need quadrilaterals or "
                              "hexahedra (Recombine in Gmsh).");
-        triangulation.copy_triangulation(coarse);
-        triangulation.refine_global(refinements);
       }
 
-      std::map<std::string, types::boundary_id>
-      boundary_names() const override
-      {
-        std::map<std::string, types::boundary_id> names;
-        for (const auto &[name, tag] : boundaries)
-          names[name] = static_cast<types::boundary_id>(tag);
-        return names;
-      }
-
-      std::vector<std::string>
-      body_names() const override
-      {
-        std::vector<std::string> names;
-        for (const auto &entry : bodies)
-          names.push_back(entry.first);
-        return names;
-      }
-
-    private:
-      const std::string                  file;
-      const unsigned int                 refinements;
-      mutable std::map<std::string, int> boundaries, bodies;
+      const std::string                         file;
+      const unsigned int                        refinements;
+      Triangulation<dim>                        coarse;
+      std::map<std::string, types::boundary_id> boundaries;
+      std::vector<std::string>                  bodies;
     };
 
     namespace

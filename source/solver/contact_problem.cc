@@ -409,9 +409,7 @@ namespace StabilizedLagrangian
           if (is_contact_face(cell, f))
             {
               const auto face   = cell->face(f);
-              const auto face_m = typename DoFHandler<dim>::active_cell_iterator(
-                                      &triangulation, cell->level(), cell->index(), &dof_handler_m)
-                                      ->face(f);
+              const auto face_m = multiplier_cell(cell)->face(f);
               for (const unsigned int v : face->vertex_indices())
                 for (unsigned int a = 0; a < dim - 1; ++a)
                   {
@@ -571,8 +569,7 @@ namespace StabilizedLagrangian
                                              const TrilinosWrappers::MPI::Vector &ghosted)
   {
     u_values.reinit(face.cell, face.face_no);
-    const typename DoFHandler<dim>::active_cell_iterator m_cell(
-        &problem.triangulation, face.cell->level(), face.cell->index(), &problem.dof_handler_m);
+    const auto m_cell = problem.multiplier_cell(face.cell);
     m_values.reinit(m_cell, face.face_no);
     face.cell->get_dof_indices(u_dofs);
 

@@ -34,7 +34,7 @@ namespace StabilizedLagrangian
 
       /**
        * @brief Names of boundaries (a mesh file's physical groups of dimension
-       * dim − 1) with their boundary ids, known after create_mesh(); the
+       * dim − 1) with their boundary ids; the
        * `Boundary conditions` and `Contact` entries may use them instead of ids.
        */
       virtual std::map<std::string, types::boundary_id>
@@ -43,7 +43,7 @@ namespace StabilizedLagrangian
         return {};
       }
 
-      /** @brief Names of the bodies (physical groups of dimension dim), after create_mesh(). */
+      /** @brief Names of the bodies (physical groups of dimension dim). */
       virtual std::vector<std::string>
       body_names() const
       {

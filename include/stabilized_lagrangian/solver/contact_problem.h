@@ -261,6 +261,13 @@ namespace StabilizedLagrangian
     largest_dirichlet_increment();
     void
     setup_multiplier_numbering();
+    /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
+    typename DoFHandler<dim>::active_cell_iterator
+    multiplier_cell(const typename DoFHandler<dim>::active_cell_iterator &cell) const
+    {
+      return typename DoFHandler<dim>::active_cell_iterator(
+          &triangulation, cell->level(), cell->index(), &dof_handler_m);
+    }
     /** Whether face @p f of @p cell lies on the contact boundary Γc. */
     template <typename CellIterator>
     bool
