@@ -43,6 +43,12 @@ namespace StabilizedLagrangian
                         "Boundaries of the slave contact surface Γc, which carries the "
                         "multipliers: boundary ids, or names of the mesh's boundaries (the "
                         "physical groups of a Gmsh mesh).");
+      prm.declare_entry("Master boundary ids",
+                        "",
+                        Patterns::List(Patterns::Anything(), 0),
+                        "Boundaries of the master surface of a second deformable body (ids or "
+                        "names): each slave point is paired with the closest point of the "
+                        "deformed master surface. Empty: the master is the rigid `Obstacle`.");
       prm.declare_entry("r_n",
                         "1e4",
                         Patterns::Anything(),
@@ -82,16 +88,22 @@ namespace StabilizedLagrangian
     Contact::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Contact");
-      boundary_ids.clear();
-      boundary_names.clear();
-      for (const auto &entry : Utilities::split_string_list(prm.get("Contact boundary ids")))
-        {
-          const auto id = boundary_id_or_name(entry, "Contact/Contact boundary ids");
-          if (id)
-            boundary_ids.insert(*id);
-          else
-            boundary_names.push_back(entry);
-        }
+      const auto parse_boundaries = [&prm](const std::string            &entry,
+                                           std::set<types::boundary_id> &ids,
+                                           std::vector<std::string>     &names) {
+        ids.clear();
+        names.clear();
+        for (const auto &item : Utilities::split_string_list(prm.get(entry)))
+          {
+            const auto id = boundary_id_or_name(item, "Contact/" + entry);
+            if (id)
+              ids.insert(*id);
+            else
+              names.push_back(item);
+          }
+      };
+      parse_boundaries("Contact boundary ids", boundary_ids, boundary_names);
+      parse_boundaries("Master boundary ids", master_ids, master_names);
       // a positive number, or `automatic` (times a positive factor)
       const auto parse_parameter = [&prm](const std::string &name,
                                           const std::string &unit,

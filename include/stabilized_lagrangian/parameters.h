@@ -43,7 +43,10 @@ namespace StabilizedLagrangian
     {
       std::set<types::boundary_id> boundary_ids;
       std::vector<std::string>     boundary_names; ///< mesh boundary names, resolved by the run
-      double                       r_n = 0.; ///< the value used (set by the run when automatic)
+      /** master surface of a second deformable body; empty: the rigid obstacle */
+      std::set<types::boundary_id> master_ids;
+      std::vector<std::string>     master_names; ///< resolved by the run
+      double                       r_n = 0.;     ///< the value used (set by the run when automatic)
       double                       r_t = 0.;
       bool                         r_n_automatic = false;
       bool                         r_t_automatic = false;

@@ -131,7 +131,7 @@ namespace StabilizedLagrangian
         return boundaries;
       }
 
-      std::vector<std::string>
+      std::map<std::string, types::material_id>
       body_names() const override
       {
         return bodies;
@@ -144,7 +144,7 @@ namespace StabilizedLagrangian
       {
         for (const auto &[key, tag] : read_physical_names(msh_file))
           if (key.first == dim)
-            bodies.push_back(key.second);
+            bodies[key.second] = static_cast<types::material_id>(tag);
           else
             boundaries[key.second] = static_cast<types::boundary_id>(tag);
         GridIn<dim> grid_in;
@@ -170,7 +170,7 @@ namespace StabilizedLagrangian
       const unsigned int                        refinements;
       Triangulation<dim>                        coarse;
       std::map<std::string, types::boundary_id> boundaries;
-      std::vector<std::string>                  bodies;
+      std::map<std::string, types::material_id> bodies;
     };
 
     namespace

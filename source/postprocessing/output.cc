@@ -81,6 +81,18 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
+  std::vector<std::string>
+  ContactProblem<dim>::history_field_names() const
+  {
+    std::vector<std::string> names;
+    for (const auto &body : materials)
+      for (const auto &name : body.model->history_field_names())
+        if (std::find(names.begin(), names.end(), name) == names.end())
+          names.push_back(name);
+    return names;
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
                                              std::vector<Tensor<2, 3>>           &cell_stress,
@@ -88,30 +100,35 @@ namespace StabilizedLagrangian
   {
     const unsigned int n_cells = triangulation.n_active_cells();
     cell_stress.assign(n_cells, Tensor<2, 3>());
-    cell_history_fields.assign(material->history_field_names().size(), Vector<float>(n_cells));
+    const std::vector<std::string> names = history_field_names();
+    cell_history_fields.assign(names.size(), Vector<float>(n_cells));
     FEValues<dim>                    fe_values(*fe_u, cell_quadrature, update_gradients);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
-    std::vector<double>              scratch(material->n_history());
+    std::vector<double>              scratch;
     const double                     weight = 1. / cell_quadrature.size();
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(u, gradients);
-          const unsigned int index = cell->active_cell_index();
+          const unsigned int               index    = cell->active_cell_index();
+          const Materials::Interface<dim> &material = material_of(cell);
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
               const auto history = material_history.committed(index, q);
+              scratch.resize(history.size());
               const auto response =
-                  material->evaluate(gradients[q], history, make_array_view(scratch));
+                  material.evaluate(gradients[q], history, make_array_view(scratch));
               cell_stress[index] +=
                   weight *
-                  Materials::cauchy_stress(gradients[q], response, material->is_finite_strain());
-              const std::vector<double> fields = material->history_fields(history);
+                  Materials::cauchy_stress(gradients[q], response, material.is_finite_strain());
+              const std::vector<double> fields      = material.history_fields(history);
+              const auto                field_names = material.history_field_names();
               for (unsigned int f = 0; f < fields.size(); ++f)
-                cell_history_fields[f][index] += weight * fields[f];
+                cell_history_fields[std::find(names.begin(), names.end(), field_names[f]) -
+                                    names.begin()][index] += weight * fields[f];
             }
         }
   }
@@ -138,9 +155,12 @@ namespace StabilizedLagrangian
 
     // the state of the converged iterate, evaluated afresh at a point:
     // pressure, tangential traction, gap, slip increment, status
-    const auto point_values = [&](const ContactKinematics<dim> &k) {
+    if (master_surface)
+      master_surface->update_configuration(ghosted_solution);
+    const auto point_values = [&](ContactKinematics<dim> k) {
       ContactPointState<dim> state;
-      state.pairing    = obstacle->project(k.position);
+      state.pairing = pair(k.position);
+      follow_master(state.pairing, k);
       const double gap = state.pairing.gap(k.position);
       state.in_contact = Contact::is_in_contact(
           Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
@@ -169,7 +189,7 @@ namespace StabilizedLagrangian
     std::vector<double>          profile;
     const QGaussLobatto<dim - 1> node_quadrature(
         std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
-    FaceEvaluator evaluator(*this, node_quadrature);
+    FaceEvaluator evaluator(*this, node_quadrature, false);
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
@@ -179,7 +199,7 @@ namespace StabilizedLagrangian
         const double tolerance   = 1e-10 * vertex_face->diameter();
         for (unsigned int q = 0; q < node_quadrature.size(); ++q)
           {
-            const Point<dim>         &X      = evaluator.u_values.quadrature_point(q);
+            const Point<dim>         &X      = evaluator.u_values->quadrature_point(q);
             const std::vector<double> values = point_values(evaluator.kinematics(q));
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
@@ -218,7 +238,7 @@ namespace StabilizedLagrangian
         compute_cell_averages(u, cell_stress, cell_history_fields);
         const CellStressPostprocessor<dim> stress(cell_stress);
         data_out.add_data_vector(dof_handler_u, u, stress);
-        const std::vector<std::string> history_names = material->history_field_names();
+        const std::vector<std::string> history_names = history_field_names();
         for (unsigned int f = 0; f < history_names.size(); ++f)
           data_out.add_data_vector(cell_history_fields[f], history_names[f]);
 

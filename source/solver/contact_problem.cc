@@ -44,9 +44,9 @@ namespace StabilizedLagrangian
     output_parameters.parse_parameters(prm);
     adaptive_refinement.parse_parameters(prm);
 
-    geometry = Geometry::create<dim>(prm);
-    obstacle = Obstacles::create<dim>(prm);
-    material = Materials::create<dim>(prm);
+    geometry  = Geometry::create<dim>(prm);
+    obstacle  = Obstacles::create<dim>(prm);
+    materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
     friction_law = FrictionLaws::create(prm);
     prm.leave_subsection();
@@ -73,7 +73,11 @@ namespace StabilizedLagrangian
     choose_augmentation_parameters();
     setup_dofs();
     setup_contact_points();
-    material_history.initialize(triangulation, cell_quadrature.size(), *material);
+    material_history.initialize(
+        triangulation,
+        cell_quadrature.size(),
+        [this](const typename Triangulation<dim>::active_cell_iterator &cell)
+            -> const Materials::Interface<dim> & { return material_of(cell); });
   }
 
   namespace
@@ -131,7 +135,7 @@ namespace StabilizedLagrangian
             (groups.empty() ? "" : ", ") + ("'" + group + "' (id " + std::to_string(id) + ")");
       std::string bodies;
       for (const auto &body : geometry->body_names())
-        bodies += (bodies.empty() ? "" : ", ") + ("'" + body + "'");
+        bodies += (bodies.empty() ? "" : ", ") + ("'" + body.first + "'");
       throw InputError(entry + " = '" + name + "': the mesh has no boundary of this name; " +
                        (names.empty() ? std::string("its boundaries have ids only")
                                       : "its boundaries are " + groups) +
@@ -139,6 +143,8 @@ namespace StabilizedLagrangian
     };
     for (const auto &name : contact_parameters.boundary_names)
       contact_parameters.boundary_ids.insert(resolve(name, "Contact/Contact boundary ids"));
+    for (const auto &name : contact_parameters.master_names)
+      contact_parameters.master_ids.insert(resolve(name, "Contact/Master boundary ids"));
     for (auto &bc : boundary_conditions.dirichlet)
       if (!bc.boundary_name.empty())
         bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Dirichlet/Boundary id");
@@ -157,6 +163,57 @@ namespace StabilizedLagrangian
     };
     for (const auto id : contact_parameters.boundary_ids)
       require(id, "Contact/Contact boundary ids");
+    for (const auto id : contact_parameters.master_ids)
+      {
+        require(id, "Contact/Master boundary ids");
+        if (contact_parameters.boundary_ids.count(id) > 0)
+          throw InputError("Contact/Master boundary ids: boundary " + std::to_string(id) +
+                           " is also in Contact/Contact boundary ids; the slave and master "
+                           "surfaces must be different boundaries.");
+      }
+
+    // bodies of the material slots, by name (a Gmsh file's physical groups) or material id
+    std::set<types::material_id> mesh_bodies;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        mesh_bodies.insert(cell->material_id());
+    {
+      std::set<types::material_id>          all_bodies;
+      const std::vector<types::material_id> local(mesh_bodies.begin(), mesh_bodies.end());
+      for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+        all_bodies.insert(part.begin(), part.end());
+      mesh_bodies = all_bodies;
+    }
+    const auto body_names = geometry->body_names();
+    material_slots.clear();
+    for (unsigned int slot = 1; slot < materials.size(); ++slot)
+      for (const auto &body : materials[slot].bodies)
+        {
+          const std::string  entry = materials[slot].slot + "/Bodies";
+          types::material_id id    = numbers::invalid_material_id;
+          const auto         named = body_names.find(body);
+          if (named != body_names.end())
+            id = named->second;
+          else if (!body.empty() && body.find_first_not_of("0123456789") == std::string::npos)
+            id = static_cast<types::material_id>(std::stoul(body));
+          if (id == numbers::invalid_material_id || mesh_bodies.count(id) == 0)
+            {
+              std::string known;
+              for (const auto &[name, tag] : body_names)
+                known += (known.empty() ? "" : ", ") +
+                         ("'" + name + "' (id " + std::to_string(tag) + ")");
+              for (const auto tag : mesh_bodies)
+                known += (known.empty() ? "" : ", ") + ("id " + std::to_string(tag));
+              throw InputError(entry + " = '" + body +
+                               "': the mesh has no body of this name or "
+                               "material id; its bodies are " +
+                               known + ".");
+            }
+          if (material_slots.count(id) > 0)
+            throw InputError(entry + " = '" + body + "': this body is already given the model of " +
+                             materials[material_slots[id]].slot + ".");
+          material_slots[id] = slot;
+        }
     for (const auto &bc : boundary_conditions.dirichlet)
       require(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
     for (const auto &bc : boundary_conditions.neumann)
@@ -177,7 +234,10 @@ namespace StabilizedLagrangian
             h = std::max(h, cell->face(f)->diameter());
     h = Utilities::MPI::max(h, mpi_communicator);
     AssertThrow(h > 0., ExcMessage("the contact boundary has no faces"));
-    const double E = material->youngs_modulus();
+    // the stiffest body sets r_n: r_n has no influence over decades (doc/robustness.md)
+    double E = 0.;
+    for (const auto &body : materials)
+      E = std::max(E, body.model->youngs_modulus());
     if (contact_parameters.r_n_automatic)
       {
         contact_parameters.r_n =
@@ -260,6 +320,16 @@ namespace StabilizedLagrangian
     locally_relevant.set_size(n_u + n_multipliers);
     locally_relevant.add_indices(locally_relevant_u);
     locally_relevant.add_indices(relevant_multipliers, n_u);
+    master_surface.reset();
+    if (!contact_parameters.master_ids.empty())
+      {
+        // every rank sees the whole master surface (its DoFs are ghosts)
+        master_surface = std::make_unique<Contact::MasterSurface<dim>>(
+            dof_handler_u, contact_parameters.master_ids, mpi_communicator);
+        if (master_surface->n_faces() == 0)
+          throw InputError("Contact/Master boundary ids: the master boundary has no faces.");
+        locally_relevant.add_indices(master_surface->dofs());
+      }
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
@@ -396,7 +466,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
   {
-    if (!friction_law->has_friction() || !obstacle->is_flat())
+    if (!friction_law->has_friction() || master_surface || !obstacle->is_flat())
       return;
     const auto tangents = obstacle->project(Point<dim>()).tangents;
     // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)
@@ -510,7 +580,7 @@ namespace StabilizedLagrangian
         for (const unsigned int f : cell->face_indices())
           if (is_contact_face(cell, f))
             {
-              contact_faces.push_back(ContactFace{cell, f, n_points});
+              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr});
               n_points += contact_quadrature.size();
             }
     contact_states.assign(n_points, ContactPointState<dim>());
@@ -518,6 +588,18 @@ namespace StabilizedLagrangian
       for (auto &state : contact_states)
         state.friction_threshold = friction_law->threshold(0.);
 
+    // initial statuses from the initial configuration: touching points are in contact
+    sparsity_ready = false;
+    update_pairings(true);
+    setup_sparsity();
+    update_statuses();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_sparsity()
+  {
+    TimerOutput::Scope                   scope(timer, "sparsity pattern");
     DynamicSparsityPattern               dsp(locally_relevant);
     std::vector<types::global_dof_index> u_dofs(fe_u->n_dofs_per_cell());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
@@ -527,11 +609,33 @@ namespace StabilizedLagrangian
           newton_constraints.add_entries_local_to_global(u_dofs, dsp, false);
         }
     FaceEvaluator evaluator(*this, contact_quadrature);
-    for (const auto &face : contact_faces)
+    sparsity_master_faces.assign(contact_faces.size(), {});
+    std::vector<unsigned int> components;
+    std::vector<double>       values;
+    for (unsigned int c = 0; c < contact_faces.size(); ++c)
       {
+        const ContactFace &face = contact_faces[c];
         evaluator.reinit(face, ghosted_solution);
         std::vector<types::global_dof_index> local_dofs = evaluator.u_dofs;
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
+        if (master_surface)
+          {
+            // the paired master faces and their neighbours
+            std::set<unsigned int> near;
+            for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+              for (const unsigned int m : master_surface->neighbours(
+                       contact_states[face.first_point + q].pairing.master_face))
+                near.insert(m);
+            sparsity_master_faces[c].assign(near.begin(), near.end());
+            std::vector<types::global_dof_index> master_dofs;
+            for (const unsigned int m : near)
+              {
+                master_surface->shape_values(m, Point<dim - 1>(), master_dofs, components, values);
+                local_dofs.insert(local_dofs.end(), master_dofs.begin(), master_dofs.end());
+              }
+            std::sort(local_dofs.begin(), local_dofs.end());
+            local_dofs.erase(std::unique(local_dofs.begin(), local_dofs.end()), local_dofs.end());
+          }
         newton_constraints.add_entries_local_to_global(local_dofs, dsp, false);
       }
     SparsityTools::distribute_sparsity_pattern(
@@ -541,10 +645,59 @@ namespace StabilizedLagrangian
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
     direct_solver = std::make_unique<LinearSolvers::DirectSolver>(
         linear_solver_parameters.direct_solver, linear_solver_parameters.null_pivot_detection);
+    sparsity_ready = true;
+  }
 
-    // initial statuses from the initial configuration: touching points are in contact
-    update_pairings();
-    update_statuses();
+  template <int dim>
+  bool
+  ContactProblem<dim>::pairings_left_sparsity() const
+  {
+    int left = 0;
+    if (master_surface)
+      {
+        if (sparsity_master_faces.size() != contact_faces.size())
+          left = 1;
+        else
+          for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
+            for (unsigned int q = 0; q < face_quadrature(contact_faces[c]).size(); ++q)
+              {
+                const auto &faces = sparsity_master_faces[c];
+                const int m = contact_states[contact_faces[c].first_point + q].pairing.master_face;
+                if (!std::binary_search(faces.begin(), faces.end(), static_cast<unsigned int>(m)))
+                  left = 1;
+              }
+      }
+    return Utilities::MPI::max(left, mpi_communicator) == 1;
+  }
+
+  template <int dim>
+  Obstacles::Pairing<dim>
+  ContactProblem<dim>::pair(const Point<dim> &x) const
+  {
+    return master_surface ? master_surface->project(x) : obstacle->project(x);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::follow_master(Obstacles::Pairing<dim> &pairing,
+                                     ContactKinematics<dim>  &k) const
+  {
+    if (pairing.master_face < 0)
+      return;
+    const unsigned int    face = pairing.master_face;
+    const Point<dim - 1> &xi   = pairing.master_reference_point;
+    const Tensor<1, dim>  now  = master_surface->displacement(face, xi, ghosted_solution);
+    pairing.master_point       = master_surface->reference_point(face, xi) + now;
+    k.step_increment -= now - master_surface->displacement(face, xi, step_start);
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::finite_strain() const
+  {
+    return std::any_of(materials.begin(), materials.end(), [](const auto &body) {
+      return body.model->is_finite_strain();
+    });
   }
 
   // ---------------------------------------------------------------------------
@@ -552,14 +705,12 @@ namespace StabilizedLagrangian
 
   template <int dim>
   ContactProblem<dim>::FaceEvaluator::FaceEvaluator(const ContactProblem      &problem,
-                                                    const Quadrature<dim - 1> &quadrature)
-      : u_values(
-            *problem.fe_u, quadrature, update_values | update_quadrature_points | update_JxW_values)
-      , m_values(*problem.fe_m, quadrature, update_values)
-      , u_dofs(problem.fe_u->n_dofs_per_cell())
+                                                    const Quadrature<dim - 1> &quadrature,
+                                                    const bool                 follow_segments)
+      : u_dofs(problem.fe_u->n_dofs_per_cell())
       , problem(problem)
-      , u_now(quadrature.size())
-      , u_start(quadrature.size())
+      , quadrature(quadrature)
+      , follow_segments(follow_segments)
   {
   }
 
@@ -568,9 +719,21 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::FaceEvaluator::reinit(const ContactFace                   &face,
                                              const TrilinosWrappers::MPI::Vector &ghosted)
   {
-    u_values.reinit(face.cell, face.face_no);
+    const Quadrature<dim - 1> *wanted =
+        (follow_segments && face.segments) ? face.segments.get() : nullptr;
+    if (!u_values || wanted != current || wanted != nullptr)
+      {
+        const Quadrature<dim - 1> &rule = wanted ? *wanted : quadrature;
+        u_values                        = std::make_unique<FEFaceValues<dim>>(
+            *problem.fe_u, rule, update_values | update_quadrature_points | update_JxW_values);
+        m_values = std::make_unique<FEFaceValues<dim>>(*problem.fe_m, rule, update_values);
+        current  = wanted;
+        u_now.resize(rule.size());
+        u_start.resize(rule.size());
+      }
+    u_values->reinit(face.cell, face.face_no);
     const auto m_cell = problem.multiplier_cell(face.cell);
-    m_values.reinit(m_cell, face.face_no);
+    m_values->reinit(m_cell, face.face_no);
     face.cell->get_dof_indices(u_dofs);
 
     std::vector<types::global_dof_index> all_m(problem.fe_m->n_dofs_per_cell());
@@ -595,7 +758,7 @@ namespace StabilizedLagrangian
         for (unsigned int i = 0; i < u_dofs.size(); ++i)
           {
             const unsigned int c   = fe.system_to_component_index(i).first;
-            const double       phi = u_values.shape_value(i, q);
+            const double       phi = u_values->shape_value(i, q);
             u_now[q][c] += ghosted(u_dofs[i]) * phi;
             u_start[q][c] += problem.step_start(u_dofs[i]) * phi;
           }
@@ -609,12 +772,12 @@ namespace StabilizedLagrangian
     ContactKinematics<dim> k;
     k.displacement   = u_now[q];
     k.step_increment = u_now[q] - u_start[q];
-    k.position       = u_values.quadrature_point(q) + u_now[q];
-    k.JxW            = u_values.JxW(q);
+    k.position       = u_values->quadrature_point(q) + u_now[q];
+    k.JxW            = u_values->JxW(q);
     for (unsigned int a = 0; a < m_local.size(); ++a)
       {
         const unsigned int c   = problem.fe_m->system_to_component_index(m_local[a]).first;
-        const double       psi = m_values.shape_value(m_local[a], q);
+        const double       psi = m_values->shape_value(m_local[a], q);
         if (c == 0)
           k.contact_pressure += m_coefficients[a] * psi;
         else
@@ -625,11 +788,97 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::update_pairings()
+  ContactProblem<dim>::update_pairings(const bool resegment)
   {
-    for_each_contact_point([this](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      state.pairing = obstacle->project(k.position);
-    });
+    if (master_surface)
+      master_surface->update_configuration(ghosted_solution);
+    const bool    new_points = resegment && update_segments();
+    FaceEvaluator evaluator(*this, contact_quadrature);
+    for (const auto &face : contact_faces)
+      {
+        evaluator.reinit(face, ghosted_solution);
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+          contact_states[face.first_point + q].pairing = pair(evaluator.kinematics(q).position);
+      }
+    if (new_points)
+      {
+        // the new points take the threshold and status of the current iterate,
+        // which the loops would give them
+        update_friction_thresholds();
+        update_statuses();
+      }
+    if (master_surface && sparsity_ready && pairings_left_sparsity())
+      setup_sparsity();
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::update_segments()
+  {
+    if (dim != 2 || !master_surface)
+      return false;
+    FaceEvaluator                       ends(*this, QTrapezoid<dim - 1>(), false);
+    std::vector<ContactFace>            faces;
+    std::vector<ContactPointState<dim>> states;
+    int                                 changed = 0;
+    for (const auto &face : contact_faces)
+      {
+        ends.reinit(face, ghosted_solution);
+        const Point<dim>     A      = ends.kinematics(0).position;
+        const Tensor<1, dim> AB     = ends.kinematics(1).position - A;
+        const double         length = AB.norm();
+        BoundingBox<dim>     box(std::vector<Point<dim>>{A, A + AB});
+        box.extend(0.5 * length);
+        // the parameters in (0, 1) of the master's vertices projected on the face
+        std::vector<double> cuts = {0., 1.};
+        for (const auto &vertex : master_surface->vertices_near(box))
+          {
+            const double s = (vertex - A) * AB / (length * length);
+            if (s > 1e-8 && s < 1. - 1e-8 && (vertex - (A + s * AB)).norm() <= length)
+              cuts.push_back(s);
+          }
+        std::sort(cuts.begin(), cuts.end());
+        cuts.erase(std::unique(cuts.begin(),
+                               cuts.end(),
+                               [](const double a, const double b) { return b - a < 1e-8; }),
+                   cuts.end());
+        ContactFace cut_face{
+            face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr};
+        if (cuts.size() > 2)
+          {
+            std::vector<Point<dim - 1>> points;
+            std::vector<double>         weights;
+            for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+              for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+                {
+                  const double width = cuts[k + 1] - cuts[k];
+                  points.emplace_back(cuts[k] + width * contact_quadrature.point(q)[0]);
+                  weights.push_back(width * contact_quadrature.weight(q));
+                }
+            cut_face.segments = std::make_shared<const Quadrature<dim - 1>>(points, weights);
+          }
+        const Quadrature<dim - 1> &old_rule = face_quadrature(face);
+        const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);
+        bool                       same     = old_rule.size() == new_rule.size();
+        for (unsigned int q = 0; q < new_rule.size() && same; ++q)
+          same = old_rule.point(q).distance(new_rule.point(q)) < 1e-12;
+        if (same)
+          {
+            cut_face.segments = face.segments;
+            states.insert(states.end(),
+                          contact_states.begin() + face.first_point,
+                          contact_states.begin() + face.first_point + old_rule.size());
+          }
+        else
+          {
+            changed = 1;
+            states.resize(states.size() + new_rule.size());
+          }
+        faces.push_back(cut_face);
+      }
+    contact_faces  = faces;
+    contact_states = states;
+    return Utilities::MPI::max(changed, mpi_communicator) == 1;
   }
 
   template <int dim>
@@ -648,6 +897,10 @@ namespace StabilizedLagrangian
       system_matrix = 0.;
     system_rhs = 0.;
     inadmissible_state.clear();
+    // the deformable master's pairings, folded into the generalized Newton, are
+    // refreshed before the assembly: a new pairing may need a new sparsity pattern
+    if (master_surface && folded(solver_parameters.geometry_method))
+      update_pairings(false);
     assemble_volume(assemble_matrix);
     assemble_contact(assemble_matrix);
     if (assemble_matrix)
@@ -688,8 +941,9 @@ namespace StabilizedLagrangian
           cell->get_dof_indices(dofs);
           for (unsigned int i = 0; i < n_dofs; ++i)
             coefficients[i] = ghosted_solution(dofs[i]);
-          cell_matrix = 0.;
-          cell_rhs    = 0.;
+          const Materials::Interface<dim> &material = material_of(cell);
+          cell_matrix                               = 0.;
+          cell_rhs                                  = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             {
               Tensor<2, dim> grad_u;
@@ -699,9 +953,9 @@ namespace StabilizedLagrangian
               try
                 {
                   response =
-                      material->evaluate(grad_u,
-                                         material_history.committed(cell->active_cell_index(), q),
-                                         material_history.trial(cell->active_cell_index(), q));
+                      material.evaluate(grad_u,
+                                        material_history.committed(cell->active_cell_index(), q),
+                                        material_history.trial(cell->active_cell_index(), q));
                 }
               catch (const Materials::InadmissibleState &error)
                 {
@@ -770,66 +1024,108 @@ namespace StabilizedLagrangian
     std::vector<unsigned int> u_component(n_u_cell);
     for (unsigned int i = 0; i < n_u_cell; ++i)
       u_component[i] = fe_u->system_to_component_index(i).first;
-    // the generalized Newton's linearised pairing (a plane's does not move)
+    // the generalized Newton's linearised pairing (a plane's does not move; a
+    // deformable master's pairing is refreshed at every iterate, not linearised)
     const bool linearise_geometry =
-        folded(solver_parameters.geometry_method) && !obstacle->is_flat();
+        folded(solver_parameters.geometry_method) && !master_surface && !obstacle->is_flat();
 
     FullMatrix<double>                   local_matrix;
     Vector<double>                       local_rhs;
     std::vector<types::global_dof_index> local_dofs;
-    std::vector<Tensor<1, dim>>          phi(n_u_cell);
-    std::vector<double>                  normal_shape(n_u_cell);
-    std::vector<Tensor<1, dim - 1>>      tangential_shape(n_u_cell);
+    // the displacement DoFs of the local system: the slave cell's, then the
+    // paired master faces' (their shape functions enter with a minus sign:
+    // the gap is (x¹ − x²(ξ))·n)
+    std::vector<Tensor<1, dim>>     phi;
+    std::vector<double>             normal_shape;
+    std::vector<Tensor<1, dim - 1>> tangential_shape;
     // ∂Δs/∂u_j: the tangential shape, plus (∂t_α/∂x φ_j)·Δu when the tangents move
-    std::vector<Tensor<1, dim - 1>> slip_derivative(n_u_cell);
+    std::vector<Tensor<1, dim - 1>>                 slip_derivative;
+    std::vector<types::global_dof_index>            master_dofs;
+    std::vector<unsigned int>                       master_components;
+    std::vector<double>                             master_values;
+    std::map<types::global_dof_index, unsigned int> master_position;
 
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
+        // the master DoFs of the face's pairings, once each
+        master_position.clear();
+        std::vector<types::global_dof_index> face_master_dofs;
+        for (unsigned int q = 0; q < evaluator.n_points() && master_surface; ++q)
+          {
+            const auto &pairing = contact_states[face.first_point + q].pairing;
+            master_surface->shape_values(pairing.master_face,
+                                         pairing.master_reference_point,
+                                         master_dofs,
+                                         master_components,
+                                         master_values);
+            for (const auto dof : master_dofs)
+              if (master_position.emplace(dof, n_u_cell + face_master_dofs.size()).second)
+                face_master_dofs.push_back(dof);
+          }
+        const unsigned int n_d = n_u_cell + face_master_dofs.size();
         const unsigned int n_m = evaluator.m_dofs.size();
-        const unsigned int n   = n_u_cell + n_m;
+        const unsigned int n   = n_d + n_m;
         local_matrix.reinit(n, n);
         local_rhs.reinit(n);
         local_dofs = evaluator.u_dofs;
+        local_dofs.insert(local_dofs.end(), face_master_dofs.begin(), face_master_dofs.end());
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
+        phi.resize(n_d);
+        normal_shape.resize(n_d);
+        tangential_shape.resize(n_d);
+        slip_derivative.resize(n_d);
         std::vector<unsigned int> m_component(n_m);
         for (unsigned int a = 0; a < n_m; ++a)
           m_component[a] = fe_m->system_to_component_index(evaluator.m_local[a]).first;
         std::vector<double> psi(n_m);
 
-        for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
-            ContactPointState<dim>      &state = contact_states[face.first_point + q];
-            const ContactKinematics<dim> k     = evaluator.kinematics(q);
+            ContactPointState<dim> &state = contact_states[face.first_point + q];
+            ContactKinematics<dim>  k     = evaluator.kinematics(q);
             refresh_folded_state(state, k);
             const auto   point = point_response(state, k);
             const double w     = k.JxW;
 
+            for (unsigned int i = 0; i < n_d; ++i)
+              phi[i] = Tensor<1, dim>();
             for (unsigned int i = 0; i < n_u_cell; ++i)
+              phi[i][u_component[i]] = evaluator.u_values->shape_value(i, q);
+            if (state.pairing.master_face >= 0)
               {
-                phi[i]                 = Tensor<1, dim>();
-                phi[i][u_component[i]] = evaluator.u_values.shape_value(i, q);
-                normal_shape[i]        = phi[i] * state.pairing.normal;
-                tangential_shape[i]    = state.pairing.tangential_components(phi[i]);
-                slip_derivative[i]     = tangential_shape[i];
+                master_surface->shape_values(state.pairing.master_face,
+                                             state.pairing.master_reference_point,
+                                             master_dofs,
+                                             master_components,
+                                             master_values);
+                for (unsigned int r = 0; r < master_dofs.size(); ++r)
+                  phi[master_position[master_dofs[r]]][master_components[r]] -= master_values[r];
+              }
+            for (unsigned int i = 0; i < n_d; ++i)
+              {
+                normal_shape[i]     = phi[i] * state.pairing.normal;
+                tangential_shape[i] = state.pairing.tangential_components(phi[i]);
+                slip_derivative[i]  = tangential_shape[i];
                 if (linearise_geometry)
                   for (unsigned int a = 0; a < dim - 1; ++a)
                     slip_derivative[i][a] +=
                         (state.pairing.tangent_gradients[a] * phi[i]) * k.step_increment;
               }
             for (unsigned int a = 0; a < n_m; ++a)
-              psi[a] = evaluator.m_values.shape_value(evaluator.m_local[a], q);
+              psi[a] = evaluator.m_values->shape_value(evaluator.m_local[a], q);
 
-            // the slave's tractions do work against δu; DESIGN §2
+            // the slave's tractions do work against δu¹, the master's (opposite)
+            // against δu²(ξ); DESIGN §2
             const double             normal_traction     = point.normal_traction();
             const Tensor<1, dim - 1> tangential_traction = point.tangential_traction();
             const double             pressure_residual   = point.pressure_residual();
             const Tensor<1, dim - 1> semi_residual       = point.semi_multiplier_residual();
-            for (unsigned int i = 0; i < n_u_cell; ++i)
+            for (unsigned int i = 0; i < n_d; ++i)
               local_rhs(i) -= w * (normal_traction * normal_shape[i] +
                                    tangential_traction * tangential_shape[i]);
             for (unsigned int a = 0; a < n_m; ++a)
-              local_rhs(n_u_cell + a) +=
+              local_rhs(n_d + a) +=
                   w * psi[a] *
                   (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
             if (!assemble_matrix)
@@ -848,9 +1144,9 @@ namespace StabilizedLagrangian
             // away from it when r_t is small, only spoils the Newton steps.
             const Tensor<1, dim - 1> traction_slope =
                 point.tangential_traction_pressure_derivative();
-            for (unsigned int i = 0; i < n_u_cell; ++i)
+            for (unsigned int i = 0; i < n_d; ++i)
               {
-                for (unsigned int j = 0; j < n_u_cell; ++j)
+                for (unsigned int j = 0; j < n_d; ++j)
                   {
                     double value =
                         normal_stiffness * normal_shape[i] * normal_shape[j] +
@@ -870,13 +1166,13 @@ namespace StabilizedLagrangian
                   {
                     const unsigned int c = m_component[b];
                     // u rows, multiplier columns
-                    local_matrix(i, n_u_cell + b) +=
+                    local_matrix(i, n_d + b) +=
                         w * psi[b] *
                         (c == 0 ? pressure_coupling * normal_shape[i] -
                                       traction_slope * tangential_shape[i]
                                 : tangential_shape[i] * friction_coupling[c - 1]);
                     // multiplier rows, u columns
-                    local_matrix(n_u_cell + b, i) +=
+                    local_matrix(n_d + b, i) +=
                         w * psi[b] *
                         (c == 0 ? pressure_coupling * normal_shape[i]
                                 : friction_coupling[c - 1] * slip_derivative[i]);
@@ -891,7 +1187,7 @@ namespace StabilizedLagrangian
                     block = pressure_compliance;
                   else if (ca > 0 && cb > 0)
                     block = semi_block[ca - 1][cb - 1];
-                  local_matrix(n_u_cell + a, n_u_cell + b) += w * block * psi[a] * psi[b];
+                  local_matrix(n_d + a, n_d + b) += w * block * psi[a] * psi[b];
                 }
           }
         add_to_global_system(local_matrix, local_rhs, local_dofs, assemble_matrix);
@@ -943,11 +1239,13 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::refresh_folded_state(ContactPointState<dim>       &state,
-                                            const ContactKinematics<dim> &k) const
+  ContactProblem<dim>::refresh_folded_state(ContactPointState<dim> &state,
+                                            ContactKinematics<dim> &k) const
   {
-    if (folded(solver_parameters.geometry_method))
+    // (a deformable master's pairings are refreshed before the assembly)
+    if (folded(solver_parameters.geometry_method) && !master_surface)
       state.pairing = obstacle->project(k.position);
+    follow_master(state.pairing, k);
     if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
       state.friction_threshold = friction_law->threshold(k.contact_pressure);
     if (folded(solver_parameters.status_method))

@@ -84,7 +84,7 @@ namespace StabilizedLagrangian
 
     const QGauss<dim - 1> quadrature(
         std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
-    FaceEvaluator  evaluator(*this, quadrature);
+    FaceEvaluator  evaluator(*this, quadrature, false);
     Vector<double> cell_row(n_dofs);
     double         contact_mesh_size = 0.;
     for (const auto &face : contact_faces)
@@ -94,18 +94,17 @@ namespace StabilizedLagrangian
         contact_mesh_size = std::max(contact_mesh_size, h);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
-            const Tensor<1, dim> normal =
-                obstacle->project(evaluator.u_values.quadrature_point(q)).normal;
-            const double w = evaluator.u_values.JxW(q);
+            const Tensor<1, dim> normal = pair(evaluator.u_values->quadrature_point(q)).normal;
+            const double         w      = evaluator.u_values->JxW(q);
             for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
               {
                 const auto row = normal_row.find(evaluator.m_dofs[a]);
                 if (row == normal_row.end())
                   continue;
-                const double psi_a = evaluator.m_values.shape_value(evaluator.m_local[a], q);
+                const double psi_a = evaluator.m_values->shape_value(evaluator.m_local[a], q);
                 for (unsigned int j = 0; j < n_dofs; ++j)
                   cell_row(j) =
-                      w * psi_a * evaluator.u_values.shape_value(j, q) * normal[component[j]];
+                      w * psi_a * evaluator.u_values->shape_value(j, q) * normal[component[j]];
                 constraints.distribute_local_to_global(
                     cell_row, evaluator.u_dofs, trace_rows[row->second]);
                 for (unsigned int b = 0; b < evaluator.m_dofs.size(); ++b)
@@ -113,7 +112,7 @@ namespace StabilizedLagrangian
                     const auto column = normal_row.find(evaluator.m_dofs[b]);
                     if (column != normal_row.end())
                       gram_m(row->second, column->second) +=
-                          h * w * psi_a * evaluator.m_values.shape_value(evaluator.m_local[b], q);
+                          h * w * psi_a * evaluator.m_values->shape_value(evaluator.m_local[b], q);
                   }
               }
           }

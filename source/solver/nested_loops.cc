@@ -33,7 +33,7 @@ namespace StabilizedLagrangian
       }
     MPI_Barrier(mpi_communicator);
     setup();
-    geometry_loop_needed = !(obstacle->is_flat() && !material->is_finite_strain());
+    geometry_loop_needed = master_surface || !(obstacle->is_flat() && !finite_strain());
 
     // Adaptive refinement (`Adaptive refinement/Cycles`, 0 by default): the
     // load path is solved on each mesh in turn; the last one writes into the
@@ -124,6 +124,7 @@ namespace StabilizedLagrangian
         step_size = std::min(step_size, load_stepping.end_time - time);
         const TrilinosWrappers::MPI::Vector       saved_solution = solution;
         const std::vector<ContactPointState<dim>> saved_states   = contact_states;
+        const std::vector<ContactFace>            saved_faces    = contact_faces;
         const double                              saved_time     = time;
 
         StepStatistics stats;
@@ -138,6 +139,7 @@ namespace StabilizedLagrangian
           {
             solution       = saved_solution;
             contact_states = saved_states;
+            contact_faces  = saved_faces;
             time           = saved_time;
             update_ghosts();
             // the smallest step is the nominal one halved `Maximum step cuts`
@@ -285,7 +287,7 @@ namespace StabilizedLagrangian
         stats.geometry_iterations = k;
         {
           TimerOutput::Scope scope(timer, "contact search");
-          update_pairings();
+          update_pairings(true);
         }
         const TrilinosWrappers::MPI::Vector previous = solution;
         if (!friction_loop(stats, k))

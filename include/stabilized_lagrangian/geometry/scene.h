@@ -43,8 +43,12 @@ namespace StabilizedLagrangian
         return {};
       }
 
-      /** @brief Names of the bodies (physical groups of dimension dim). */
-      virtual std::vector<std::string>
+      /**
+       * @brief Names of the bodies (a mesh file's physical groups of dimension
+       * dim) with their material ids; the `Material 2`, `Material 3` slots may
+       * use them.
+       */
+      virtual std::map<std::string, types::material_id>
       body_names() const
       {
         return {};

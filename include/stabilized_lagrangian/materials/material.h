@@ -2,6 +2,7 @@
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/utilities.h>
 
 #include <stabilized_lagrangian/plugins.h>
 
@@ -148,13 +149,44 @@ namespace StabilizedLagrangian
     /** @brief The registry of material models for dimension @p dim. */
     template <int dim> using Registry = PluginRegistry<Interface<dim>>;
 
-    /** @brief Declare the `Material` subsection with every registered model. */
+    /** @brief Number of material slots: `Material`, then `Material 2`, `Material 3`. */
+    constexpr unsigned int n_material_slots = 3;
+
+    /** @brief The subsection of material slot @p slot (0: `Material`). */
+    inline std::string
+    material_slot(const unsigned int slot)
+    {
+      return slot == 0 ? std::string("Material") : "Material " + std::to_string(slot + 1);
+    }
+
+    /**
+     * @brief Declare the `Material` subsection with every registered model, and
+     * the slots `Material 2`, `Material 3` that give the bodies they list
+     * (`Bodies`) a model of their own.
+     */
     template <int dim>
     void
     declare_parameters(ParameterHandler &prm)
     {
       Registry<dim>::declare_parameters_in(
-          prm, "Material", "linear elastic", "Constitutive model of the deformable body.");
+          prm,
+          "Material",
+          "linear elastic",
+          "Constitutive model of the deformable bodies (of every body that no `Material 2`, "
+          "`Material 3` slot lists).");
+      for (unsigned int slot = 1; slot < n_material_slots; ++slot)
+        {
+          prm.enter_subsection(material_slot(slot));
+          prm.declare_entry("Bodies",
+                            "",
+                            Patterns::List(Patterns::Anything(), 0),
+                            "Bodies of this model: names of the mesh's bodies (the physical "
+                            "groups of dimension dim of a Gmsh mesh) or material ids. "
+                            "Empty: the slot is unused.");
+          Registry<dim>::declare_parameters(
+              prm, "linear elastic", "Constitutive model of the bodies listed in `Bodies`.");
+          prm.leave_subsection();
+        }
     }
 
     /** @brief Build the model chosen in the `Material` subsection. */
@@ -163,6 +195,33 @@ namespace StabilizedLagrangian
     create(ParameterHandler &prm)
     {
       return Registry<dim>::create_from(prm, "Material");
+    }
+
+    /** @brief A material slot in use: its model and the bodies it applies to. */
+    template <int dim> struct BodyMaterial
+    {
+      std::string                     slot;   ///< its subsection, for messages
+      std::vector<std::string>        bodies; ///< names or material ids; empty: the default
+      std::unique_ptr<Interface<dim>> model;
+    };
+
+    /** @brief The default model (`Material`) first, then every slot in use. */
+    template <int dim>
+    std::vector<BodyMaterial<dim>>
+    create_all(ParameterHandler &prm)
+    {
+      std::vector<BodyMaterial<dim>> result;
+      result.push_back(BodyMaterial<dim>{"Material", {}, create<dim>(prm)});
+      for (unsigned int slot = 1; slot < n_material_slots; ++slot)
+        {
+          prm.enter_subsection(material_slot(slot));
+          const auto bodies = Utilities::split_string_list(prm.get("Bodies"));
+          if (!bodies.empty())
+            result.push_back(
+                BodyMaterial<dim>{material_slot(slot), bodies, Registry<dim>::create(prm)});
+          prm.leave_subsection();
+        }
+      return result;
     }
   } // namespace Materials
 } // namespace StabilizedLagrangian

@@ -6,6 +6,7 @@
 
 #include <stabilized_lagrangian/materials/material.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace StabilizedLagrangian
@@ -27,22 +28,31 @@ namespace StabilizedLagrangian
     public:
       /**
        * @brief Size the storage for @p n_quadrature_points points per active
-       * cell of @p triangulation and set the initial values of @p material.
+       * cell of @p triangulation and set the initial values of the material
+       * of each cell, @p material_of(cell) (a const Interface<dim>&).
        */
-      template <int dim>
+      template <int dim, typename MaterialOf>
       void
       initialize(const Triangulation<dim> &triangulation,
                  const unsigned int        n_quadrature_points,
-                 const Interface<dim>     &material)
+                 const MaterialOf         &material_of)
       {
         n_points_per_cell = n_quadrature_points;
-        n_values          = material.n_history();
+        cell_values.assign(triangulation.n_active_cells(), 0);
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            cell_values[cell->active_cell_index()] = material_of(cell).n_history();
+        n_values =
+            cell_values.empty() ? 0 : *std::max_element(cell_values.begin(), cell_values.end());
         committed_values.assign(static_cast<std::size_t>(triangulation.n_active_cells()) *
                                     n_points_per_cell * n_values,
                                 0.);
-        if (n_values > 0)
-          for (std::size_t offset = 0; offset < committed_values.size(); offset += n_values)
-            material.initial_history(ArrayView<double>(committed_values.data() + offset, n_values));
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial() && cell_values[cell->active_cell_index()] > 0)
+            for (unsigned int q = 0; q < n_points_per_cell; ++q)
+              material_of(cell).initial_history(
+                  ArrayView<double>(committed_values.data() + offset(cell->active_cell_index(), q),
+                                    cell_values[cell->active_cell_index()]));
         trial_values = committed_values;
       }
 
@@ -50,18 +60,18 @@ namespace StabilizedLagrangian
       ArrayView<const double>
       committed(const unsigned int cell_index, const unsigned int q) const
       {
-        if (n_values == 0)
+        if (cell_values[cell_index] == 0)
           return {};
-        return {committed_values.data() + offset(cell_index, q), n_values};
+        return {committed_values.data() + offset(cell_index, q), cell_values[cell_index]};
       }
 
       /** @brief Trial values at point @p q of the active cell @p cell_index. */
       ArrayView<double>
       trial(const unsigned int cell_index, const unsigned int q)
       {
-        if (n_values == 0)
+        if (cell_values[cell_index] == 0)
           return {};
-        return {trial_values.data() + offset(cell_index, q), n_values};
+        return {trial_values.data() + offset(cell_index, q), cell_values[cell_index]};
       }
 
       /** @brief Accept the trial values of a converged load step. */
@@ -78,10 +88,11 @@ namespace StabilizedLagrangian
         return (static_cast<std::size_t>(cell_index) * n_points_per_cell + q) * n_values;
       }
 
-      unsigned int        n_points_per_cell = 0;
-      unsigned int        n_values          = 0;
-      std::vector<double> committed_values;
-      std::vector<double> trial_values;
+      unsigned int              n_points_per_cell = 0;
+      unsigned int              n_values          = 0; ///< the stride: the largest per cell
+      std::vector<unsigned int> cell_values;           ///< history values of each cell's material
+      std::vector<double>       committed_values;
+      std::vector<double>       trial_values;
     };
   } // namespace Materials
 } // namespace StabilizedLagrangian

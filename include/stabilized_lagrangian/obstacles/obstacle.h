@@ -31,6 +31,13 @@ namespace StabilizedLagrangian
        */
       Tensor<2, dim>                      normal_gradient;
       std::array<Tensor<2, dim>, dim - 1> tangent_gradients;
+      /**
+       * With a deformable master (Contact::MasterSurface): the master face and
+       * the reference point ξ on it. The pairing freezes ξ, n and t_α; the master
+       * point x²(ξ) follows the master's displacement. −1 for a rigid obstacle.
+       */
+      int            master_face = -1;
+      Point<dim - 1> master_reference_point;
 
       /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
       double

@@ -20,6 +20,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/contact/friction_law.h>
+#include <stabilized_lagrangian/contact/master_surface.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
@@ -166,9 +167,21 @@ namespace StabilizedLagrangian
     std::vector<std::pair<types::global_dof_index, unsigned int>>
     locally_owned_multiplier_components() const;
 
-    /** @brief Re-pair every contact point with the obstacle at the current positions. */
+    /**
+     * @brief Re-pair every contact point with the master (the obstacle, or the
+     * deformed master surface) at the current positions; with @p resegment,
+     * first update the segments of the contact faces (update_segments()).
+     */
     void
-    update_pairings();
+    update_pairings(const bool resegment = false);
+    /**
+     * Cut the contact faces into segments at the projections of the deformed
+     * master's vertices (2D, deformable master) and rebuild the contact points
+     * of the faces whose segments changed, with thresholds and statuses
+     * evaluated at the current iterate. Returns whether any face changed.
+     */
+    bool
+    update_segments();
 
     /** @brief Refresh the ghosted copy of the iterate after current_solution() changed. */
     void
@@ -181,7 +194,20 @@ namespace StabilizedLagrangian
       typename DoFHandler<dim>::active_cell_iterator cell;
       unsigned int                                   face_no;
       unsigned int                                   first_point;
+      /**
+       * The face's own contact quadrature: the rule of `Contact quadrature` on
+       * each segment between the projections of the master's vertices (2D,
+       * deformable master), so the master's piecewise shape functions are
+       * integrated exactly; null: `contact_quadrature` on the whole face.
+       */
+      std::shared_ptr<const Quadrature<dim - 1>> segments;
     };
+    /** The contact points of @p face. */
+    const Quadrature<dim - 1> &
+    face_quadrature(const ContactFace &face) const
+    {
+      return face.segments ? *face.segments : contact_quadrature;
+    }
 
     /**
      * Evaluation of the fields on one contact face at the points of a face
@@ -190,14 +216,26 @@ namespace StabilizedLagrangian
     class FaceEvaluator
     {
     public:
-      FaceEvaluator(const ContactProblem &problem, const Quadrature<dim - 1> &quadrature);
+      /**
+       * With @p follow_segments, a face with its own quadrature (ContactFace::segments)
+       * is evaluated at its points, else at those of @p quadrature.
+       */
+      FaceEvaluator(const ContactProblem      &problem,
+                    const Quadrature<dim - 1> &quadrature,
+                    const bool                 follow_segments = true);
       void
       reinit(const ContactFace &face, const TrilinosWrappers::MPI::Vector &ghosted_solution);
       ContactKinematics<dim>
       kinematics(const unsigned int q) const;
+      /** Number of points of the face of the last reinit(). */
+      unsigned int
+      n_points() const
+      {
+        return u_now.size();
+      }
 
-      FEFaceValues<dim>                    u_values;
-      FEFaceValues<dim>                    m_values;
+      std::unique_ptr<FEFaceValues<dim>>   u_values;
+      std::unique_ptr<FEFaceValues<dim>>   m_values;
       std::vector<types::global_dof_index> u_dofs;
       /** monolithic indices of the multiplier DoFs with support on the face */
       std::vector<types::global_dof_index> m_dofs;
@@ -205,7 +243,11 @@ namespace StabilizedLagrangian
       std::vector<unsigned int> m_local;
 
     private:
-      const ContactProblem       &problem;
+      const ContactProblem     &problem;
+      const Quadrature<dim - 1> quadrature;
+      const bool                follow_segments;
+      /** the quadrature u_values and m_values were built for (null: `quadrature`) */
+      const Quadrature<dim - 1>  *current = nullptr;
       std::vector<Tensor<1, dim>> u_now, u_start;
       std::vector<double>         m_coefficients;
     };
@@ -295,6 +337,36 @@ namespace StabilizedLagrangian
     add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
     void
     setup_contact_points();
+    /**
+     * The sparsity pattern and the matrix: the bodies, and on Γc the slave,
+     * multiplier and (with a deformable master) the paired master faces' DoFs,
+     * with their neighbours so that small sliding keeps the pattern.
+     */
+    void
+    setup_sparsity();
+    /** Whether some pairing left the master faces of the sparsity pattern (on any rank). */
+    bool
+    pairings_left_sparsity() const;
+    /** The pairing of a slave position with the master: the obstacle, or the master surface. */
+    Obstacles::Pairing<dim>
+    pair(const Point<dim> &x) const;
+    /**
+     * With a deformable master: move the frozen pairing's master point x²(ξ)
+     * with the master's displacement and make the slip increment relative,
+     * Δu¹ − Δu²(ξ). Nothing for a rigid obstacle.
+     */
+    void
+    follow_master(Obstacles::Pairing<dim> &pairing, ContactKinematics<dim> &k) const;
+    /** The material of a cell (by its body, `Material 2`, `Material 3`, else `Material`). */
+    const Materials::Interface<dim> &
+    material_of(const typename Triangulation<dim>::cell_iterator &cell) const
+    {
+      const auto slot = material_slots.find(cell->material_id());
+      return *materials[slot == material_slots.end() ? 0 : slot->second].model;
+    }
+    /** Whether any material is finite strain. */
+    bool
+    finite_strain() const;
     void
     assemble_volume(const bool assemble_matrix);
 
@@ -327,8 +399,13 @@ namespace StabilizedLagrangian
       for (const auto &face : contact_faces)
         {
           evaluator.reinit(face, ghosted_solution);
-          for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
-            f(contact_states[face.first_point + q], evaluator.kinematics(q));
+          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+            {
+              ContactPointState<dim> &state = contact_states[face.first_point + q];
+              ContactKinematics<dim>  k     = evaluator.kinematics(q);
+              follow_master(state.pairing, k);
+              f(state, k);
+            }
         }
     }
     /** Forces and point counts of a converged step; records the active set. */
@@ -351,10 +428,11 @@ namespace StabilizedLagrangian
     point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /**
      * Re-evaluate at the current iterate what the loops folded into the
-     * generalized Newton would otherwise freeze: pairing, threshold, status.
+     * generalized Newton would otherwise freeze: pairing, threshold, status;
+     * and follow the deformable master (follow_master).
      */
     void
-    refresh_folded_state(ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
     /** Whether @p method folds its loop into the generalized Newton. */
     static bool
     folded(const Parameters::LoopMethod method)
@@ -365,6 +443,9 @@ namespace StabilizedLagrangian
     // --- output.cc ---
     void
     output_results(const unsigned int step, const double time);
+    /** The history fields of every material, each name once. */
+    std::vector<std::string>
+    history_field_names() const;
     /** Cell averages of the Cauchy stress and of the material's history fields. */
     void
     compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
@@ -383,9 +464,16 @@ namespace StabilizedLagrangian
     Parameters::AdaptiveRefinement      adaptive_refinement;
     Parameters::Output                  output_parameters;
 
-    std::unique_ptr<Geometry::Interface<dim>>    geometry;
-    std::unique_ptr<Obstacles::Interface<dim>>   obstacle;
-    std::unique_ptr<Materials::Interface<dim>>   material;
+    std::unique_ptr<Geometry::Interface<dim>>  geometry;
+    std::unique_ptr<Obstacles::Interface<dim>> obstacle;
+    /** the default model first, then the slots in use; material_slots maps a body's id to one */
+    std::vector<Materials::BodyMaterial<dim>>  materials;
+    std::map<types::material_id, unsigned int> material_slots;
+    /** the deformable master's surface, when `Contact/Master boundary ids` is set */
+    std::unique_ptr<Contact::MasterSurface<dim>> master_surface;
+    /** per contact face: the master faces whose DoFs the sparsity pattern couples to it */
+    std::vector<std::vector<unsigned int>>       sparsity_master_faces;
+    bool                                         sparsity_ready = false;
     std::unique_ptr<FrictionLaws::Interface>     friction_law;
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
     Materials::QuadratureHistory                 material_history;
