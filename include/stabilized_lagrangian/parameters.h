@@ -83,8 +83,8 @@ namespace StabilizedLagrangian
     /** @brief `Boundary conditions` subsection: Dirichlet and Neumann slots. */
     template <int dim> struct BoundaryConditions
     {
-      static constexpr unsigned int n_dirichlet_slots = 3;
-      static constexpr unsigned int n_neumann_slots   = 2;
+      static constexpr unsigned int n_dirichlet_slots = 6;
+      static constexpr unsigned int n_neumann_slots   = 3;
 
       std::vector<DirichletCondition<dim>> dirichlet;
       std::vector<NeumannCondition<dim>>   neumann;
