@@ -7,7 +7,8 @@ Checks: every run reaches t = 1; the values used are reported in the log and
 in run_summary.csv and follow C_n E/h and C_t/l (h halves → r_n doubles, r_t,
 set by the load increment l, stays); on the 2D scenes the final contact forces
 equal those of hand-set r_n = 1e4, r_t = 1 to 1e-6 relative (the stabilized
-Lagrangian's solution does not depend on them)."""
+Lagrangian's solution does not depend on them; one-body scenes only: with two
+bodies on non-matching meshes it does, doc/formulation.md)."""
 import glob
 import os
 import re
@@ -39,13 +40,23 @@ def run(name, text):
 for prm in sorted(glob.glob(os.path.join(root, "prm", "*.prm"))):
     scene = os.path.splitext(os.path.basename(prm))[0]
     text = sltest.read_prm(prm)
+    two_bodies = "Master boundary ids" in text
+    # a two-body scene runs with the algorithm it sets (prm/ironing.prm: the
+    # nested loops need ~90 step cuts there, doc/formulation.md)
+    algorithms = (("nested", ""), ("newton", sltest.GENERALIZED_NEWTON))
+    if two_bodies and "Method = newton" in text:
+        algorithms = (("newton", ""),)
     results = {algorithm: run(f"{scene}, automatic, {algorithm}", text + AUTOMATIC + extra)
-               for algorithm, extra in (("nested", ""), ("newton", sltest.GENERALIZED_NEWTON))}
-    if results["nested"]:
-        log = results["nested"][2]
+               for algorithm, extra in algorithms}
+    first = next(iter(results.values()))
+    if first:
+        log = first[2]
         check(re.search(r"r_n = automatic: .* N/mm\^3", log) and re.search(r"r_t = automatic: .* 1/mm", log),
               f"{scene}: the automatic values are reported")
-    if "Dimension = 2" in text and all(results.values()):
+    # with two bodies on non-matching meshes the gap is zero only weakly
+    # (∫ψ g = 0), and r_n g enters λ̂: the solution depends on r_n, a known
+    # limitation (doc/formulation.md), so the comparison is for one body only
+    if "Dimension = 2" in text and not two_bodies and all(results.values()):
         hand_set = run(f"{scene}, r_n = 1e4, r_t = 1",
                        text + "\nsubsection Contact\n  set r_n = 1e4\n  set r_t = 1\nend\n")
         if hand_set:

@@ -20,6 +20,7 @@
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
+#include <limits>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -234,10 +235,19 @@ namespace StabilizedLagrangian
             h = std::max(h, cell->face(f)->diameter());
     h = Utilities::MPI::max(h, mpi_communicator);
     AssertThrow(h > 0., ExcMessage("the contact boundary has no faces"));
-    // the stiffest body sets r_n: r_n has no influence over decades (doc/robustness.md)
-    double E = 0.;
-    for (const auto &body : materials)
-      E = std::max(E, body.model->youngs_modulus());
+    // E of the softest body at the contact (slave or master): with a rigid
+    // obstacle the slave's; with two bodies the softer one's, because there the
+    // solution depends on r_n (doc/formulation.md, two deformable bodies) and the
+    // rigid limit of a stiffening master must keep the slave's r_n
+    double E = std::numeric_limits<double>::max();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              (contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0 ||
+               contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0))
+            E = std::min(E, material_of(cell).youngs_modulus());
+    E = Utilities::MPI::min(E, mpi_communicator);
     if (contact_parameters.r_n_automatic)
       {
         contact_parameters.r_n =

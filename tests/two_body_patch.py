@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Taylor-Papadopoulos contact patch test between two deformable bodies
+(prm/contact_patch_test.prm on prm/meshes/contact_patch.geo): two stacked
+10 x 5 mm elastic blocks of the same material with non-matching meshes on
+their interface (8 graded cells along the lower block's top, 10 equal ones
+along the upper block's bottom, no interior node in common), a uniform
+pressure p = 100 MPa on the upper top, rollers under the lower block,
+symmetry planes on the left, frictionless.
+
+The exact solution is a uniform stress sigma_yy = -p in both blocks: its
+displacement is linear, so it lies in the displacement space of every pair,
+and the interface displacements of the two blocks coincide (same material),
+so the gap is zero and the contact pressure is p at every point of the
+interface. A contact discretisation that passes the patch test reproduces it
+to solver tolerance, hence the bound 1e-8 relative (the Newton tolerance) on
+the nodal contact pressure of the last load step and on the normal force
+p L = 1000 N/mm. The stress (cell averages in the .vtu output, single
+precision) is checked to be that uniform state in every cell of both blocks:
+the master body receives the contact forces consistently.
+
+Checked for the pair Q1/P1 and Q2/P1, with the slave on the finer side
+(upper_bottom, the scene) and with the roles swapped (slave lower_top, the
+coarser side), on 1 and 2 MPI ranks."""
+import base64
+import glob
+import os
+import re
+import struct
+import sys
+import zlib
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+prm_dir = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm"))
+scene = sltest.read_prm(os.path.join(prm_dir, "contact_patch_test.prm"))
+pressure, length = 100.0, 10.0
+tolerance = 1e-8  # the solver tolerance: the exact solution is in the discrete space
+
+
+def vtu_point_arrays(path):
+    """The Float32 arrays of a .vtu written by deal.II (binary, zlib-compressed):
+    name -> (components, values); the points under the name `points`."""
+    with open(path) as f:
+        text = f.read()
+    arrays = {}
+    for m in re.finditer(r'<DataArray type="Float32"(?: Name="([^"]*)")?(?: NumberOfComponents="(\d+)")? '
+                         r'format="binary">\s*(\S+)\s*</DataArray>', text):
+        name, components, data = m.group(1) or "points", int(m.group(2) or 1), m.group(3)
+        # base64 header (uint32: blocks, block size, last block size, compressed sizes), then the blocks
+        blocks = struct.unpack("<I", base64.b64decode(data[:8])[:4])[0]
+        header_bytes = 4 * (3 + blocks)
+        header_chars = 4 * ((header_bytes + 2) // 3)
+        sizes = struct.unpack(f"<{3 + blocks}I", base64.b64decode(data[:header_chars])[:header_bytes])[3:]
+        raw, position, values = base64.b64decode(data[header_chars:]), 0, b""
+        for size in sizes:
+            values += zlib.decompress(raw[position:position + size])
+            position += size
+        arrays[name] = (components, struct.unpack(f"<{len(values) // 4}f", values))
+    return arrays
+
+
+SLAVE = "set Contact boundary ids = upper_bottom"
+MASTER = "set Master boundary ids  = lower_top"
+PAIR = "set Finite element pair  = Q1/P1"
+for entry in (SLAVE, MASTER, PAIR):
+    if entry not in scene:
+        raise SystemExit(f"FAIL: prm/contact_patch_test.prm has no '{entry}'")
+swapped_scene = (scene.replace(SLAVE, "set Contact boundary ids = lower_top")
+                 .replace(MASTER, "set Master boundary ids  = upper_bottom"))
+
+# (pair, slave, ranks); the slave's vertices: 10 + 1 on upper_bottom, 8 + 1 on
+# lower_top (one global refinement), plus the midsides for Q2
+VTU = "\nsubsection Output\n  set Write vtu = true\nend\n"
+cases = [("Q1/P1", "upper_bottom", 1), ("Q1/P1", "lower_top", 1),
+         ("Q2/P1", "upper_bottom", 1), ("Q2/P1", "lower_top", 1),
+         ("Q1/P1", "upper_bottom", 2), ("Q1/P1", "lower_top", 2)]
+for pair, slave, ranks in cases:
+    cells = 10 if slave == "upper_bottom" else 8
+    nodes = cells + 1 if pair.startswith("Q1") else 2 * cells + 1
+    text = (scene if slave == "upper_bottom" else swapped_scene).replace(PAIR, f"set Finite element pair  = {pair}")
+    name = f"{pair}, slave {slave}, {ranks} rank(s)"
+    out = os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}")
+    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT + VTU, out, ranks=ranks, expect_success=False)
+    check(code == 0, f"{name}: exit code {code}")
+    if code != 0:
+        print(log[-3000:])
+        continue
+    profile = sltest.last_profile(os.path.join(out, "output"))
+    check(len(profile) == nodes, f"{name}: {len(profile)} profile nodes, the slave has {nodes}")
+    open_nodes = [row["x_mm"] for row in profile if row["status"] == 0]
+    check(not open_nodes, f"{name}: every node in contact (open at x = {open_nodes})")
+    error = max(abs(row["contact_pressure_MPa"] - pressure) for row in profile) / pressure
+    worst = max(profile, key=lambda row: abs(row["contact_pressure_MPa"] - pressure))
+    check(error < tolerance, f"{name}: max |p - {pressure:g}| / {pressure:g} = {error:.2e} "
+          f"(worst at x = {worst['x_mm']:.3f}: {worst['contact_pressure_MPa']:.10g} MPa)")
+    last = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]
+    force = last["normal_force_N"]
+    force_error = abs(force - pressure * length) / (pressure * length)
+    check(force_error < tolerance, f"{name}: normal force {force:.8f} N/mm = p L, "
+          f"relative error {force_error:.2e}")
+    # every cell of both blocks: sigma_yy = -p, sigma_xx = sigma_xy = 0; the
+    # stress is written in single precision (relative rounding 6e-8), so the
+    # bound is 1e-6 p, above the rounding and the solver tolerance
+    files = glob.glob(os.path.join(out, "output", f"solution_{int(last['step']):05d}.*.vtu"))
+    points, stress = [], []
+    for path in files:
+        arrays = vtu_point_arrays(path)
+        points += arrays["points"][1]
+        stress += arrays["stress"][1]
+    ys = points[1::3]
+    check(ys and min(ys) < 0 < max(ys), f"{name}: the .vtu output ({len(files)} file(s)) covers both blocks")
+    deviation = max([abs(sxx) for sxx in stress[0::9]] + [abs(sxy) for sxy in stress[1::9]] +
+                    [abs(syy + pressure) for syy in stress[4::9]] or [float("inf")]) / pressure
+    check(deviation < 1e-6, f"{name}: uniform stress sigma_yy = -p in both blocks, max deviation "
+          f"{deviation:.1e} p over {len(ys)} output points")
+check.finish()
