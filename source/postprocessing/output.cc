@@ -112,8 +112,9 @@ namespace StabilizedLagrangian
         {
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(u, gradients);
-          const unsigned int               index    = cell->active_cell_index();
-          const Materials::Interface<dim> &material = material_of(cell);
+          const unsigned int               index       = cell->active_cell_index();
+          const Materials::Interface<dim> &material    = material_of(cell);
+          const std::vector<std::string>   field_names = material.history_field_names();
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
@@ -124,8 +125,7 @@ namespace StabilizedLagrangian
               cell_stress[index] +=
                   weight *
                   Materials::cauchy_stress(gradients[q], response, material.is_finite_strain());
-              const std::vector<double> fields      = material.history_fields(history);
-              const auto                field_names = material.history_field_names();
+              const std::vector<double> fields = material.history_fields(history);
               for (unsigned int f = 0; f < fields.size(); ++f)
                 cell_history_fields[std::find(names.begin(), names.end(), field_names[f]) -
                                     names.begin()][index] += weight * fields[f];

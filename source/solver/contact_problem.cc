@@ -620,8 +620,6 @@ namespace StabilizedLagrangian
         }
     FaceEvaluator evaluator(*this, contact_quadrature);
     sparsity_master_faces.assign(contact_faces.size(), {});
-    std::vector<unsigned int> components;
-    std::vector<double>       values;
     for (unsigned int c = 0; c < contact_faces.size(); ++c)
       {
         const ContactFace &face = contact_faces[c];
@@ -637,10 +635,9 @@ namespace StabilizedLagrangian
                        contact_states[face.first_point + q].pairing.master_face))
                 near.insert(m);
             sparsity_master_faces[c].assign(near.begin(), near.end());
-            std::vector<types::global_dof_index> master_dofs;
             for (const unsigned int m : near)
               {
-                master_surface->shape_values(m, Point<dim - 1>(), master_dofs, components, values);
+                const auto master_dofs = master_surface->face_dof_indices(m);
                 local_dofs.insert(local_dofs.end(), master_dofs.begin(), master_dofs.end());
               }
             std::sort(local_dofs.begin(), local_dofs.end());
@@ -1063,13 +1060,8 @@ namespace StabilizedLagrangian
         std::vector<types::global_dof_index> face_master_dofs;
         for (unsigned int q = 0; q < evaluator.n_points() && master_surface; ++q)
           {
-            const auto &pairing = contact_states[face.first_point + q].pairing;
-            master_surface->shape_values(pairing.master_face,
-                                         pairing.master_reference_point,
-                                         master_dofs,
-                                         master_components,
-                                         master_values);
-            for (const auto dof : master_dofs)
+            const int master_face = contact_states[face.first_point + q].pairing.master_face;
+            for (const auto dof : master_surface->face_dof_indices(master_face))
               if (master_position.emplace(dof, n_u_cell + face_master_dofs.size()).second)
                 face_master_dofs.push_back(dof);
           }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -103,6 +104,13 @@ namespace StabilizedLagrangian
                    std::vector<types::global_dof_index> &dofs,
                    std::vector<unsigned int>            &components,
                    std::vector<double>                  &values) const;
+
+      /** @brief The displacement DoFs of face @p face (node-major, dim per node). */
+      ArrayView<const types::global_dof_index>
+      face_dof_indices(const unsigned int face) const
+      {
+        return {face_dofs.data() + face * n_nodes * dim, n_nodes * dim};
+      }
 
       /**
        * @brief Deformed vertices of the faces whose boxes meet @p box (a vertex
