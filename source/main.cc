@@ -6,6 +6,7 @@
 
 #include <default_scene.h>
 
+#include <algorithm>
 #include <iostream>
 
 namespace
@@ -13,7 +14,7 @@ namespace
   using namespace dealii;
   using namespace StabilizedLagrangian;
 
-  const char *usage = R"(Usage: stabilized_lagrangian [input.prm]
+  const char *usage = R"(Usage: stabilized_lagrangian [--threads N] [input.prm]
        stabilized_lagrangian --inf-sup [N] input.prm
        stabilized_lagrangian --print-parameters [2|3]
        stabilized_lagrangian --help
@@ -24,6 +25,9 @@ status, Newton). Without an argument the built-in default scene runs:
 the elastic patin of the seed paper (prm/patin_elastic.prm).
 
   input.prm            run the scene described by this parameter file
+  --threads N          BLAS/OpenMP threads per MPI rank (default: the entry
+                       Linear solver/Threads per rank, 1); the environment's
+                       OPENBLAS_NUM_THREADS and OMP_NUM_THREADS are ignored
   --inf-sup [N]        numerical inf-sup test of the scene's FE pair on its mesh
                        and N - 1 global refinements (default N = 4): beta_h per
                        mesh, printed and written to inf_sup.csv; one MPI rank
@@ -36,11 +40,20 @@ Output goes to the directory of the entry Output/Output directory.
 
   template <int dim>
   int
-  run(const std::string &text, const bool is_file, const unsigned int inf_sup_meshes)
+  run(const std::string &text,
+      const bool         is_file,
+      const unsigned int inf_sup_meshes,
+      const std::string &threads)
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
     Parameters::parse(prm, text, is_file);
+    if (!threads.empty())
+      {
+        prm.enter_subsection("Linear solver");
+        prm.set("Threads per rank", threads);
+        prm.leave_subsection();
+      }
     ContactProblem<dim> problem(prm);
     if (inf_sup_meshes > 0)
       {
@@ -77,8 +90,20 @@ main(int argc, char *argv[])
             prm.print_parameters(std::cout, ParameterHandler::PRM);
           return 0;
         }
-      std::vector<std::string> files          = args;
-      unsigned int             inf_sup_meshes = 0;
+      std::vector<std::string> files = args;
+      std::string              threads;
+      const auto               option = std::find(files.begin(), files.end(), "--threads");
+      if (option != files.end())
+        {
+          if (option + 1 == files.end() ||
+              (option + 1)->find_first_not_of("0123456789") != std::string::npos ||
+              (option + 1)->size() > 3 || std::stoi(*(option + 1)) < 1 ||
+              std::stoi(*(option + 1)) > 256)
+            throw InputError("--threads N: N must be an integer from 1 to 256.");
+          threads = *(option + 1);
+          files.erase(option, option + 2);
+        }
+      unsigned int inf_sup_meshes = 0;
       if (!files.empty() && files[0] == "--inf-sup")
         {
           files.erase(files.begin());
@@ -101,8 +126,8 @@ main(int argc, char *argv[])
       const bool         is_file = !files.empty();
       const std::string  text    = is_file ? files[0] : std::string(default_scene_prm);
       const unsigned int dim     = Parameters::read_dimension(text, is_file);
-      return dim == 2 ? run<2>(text, is_file, inf_sup_meshes)
-                      : run<3>(text, is_file, inf_sup_meshes);
+      return dim == 2 ? run<2>(text, is_file, inf_sup_meshes, threads)
+                      : run<3>(text, is_file, inf_sup_meshes, threads);
     }
   catch (const InputError &e)
     {

@@ -334,15 +334,21 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Newton");
       prm.declare_entry("Maximum iterations", "25", Patterns::Integer(1));
       prm.declare_entry("Tolerance",
-                        "1e-6",
+                        "1e-8",
                         Patterns::Double(0.),
-                        "Newton stops when the residual (max norm, in N: multiplier rows "
-                        "scaled by r_n and r_t) is at most this; with `relative`, when its "
-                        "ratio to the first residual of the loop is.");
-      prm.declare_entry("Residual",
-                        "absolute",
-                        Patterns::Selection("absolute|relative"),
-                        "absolute: the seed's criterion; relative: to the first residual.");
+                        "Newton stops when the measure chosen by `Residual` is at most this.");
+      prm.declare_entry(
+          "Residual",
+          "scaled",
+          Patterns::Selection("scaled|absolute|relative"),
+          "scaled: each block of the residual against its own scale, dimensionless: the "
+          "force rows (max norm) against the largest nodal internal or external force, "
+          "the contact and friction rows as lengths (a gap, a stick point's slip) against "
+          "the largest displacement; independent of r_n, r_t and of the load level, and "
+          "far above round-off (doc/formulation.md). absolute: the seed's criterion, the "
+          "residual in N (multiplier rows scaled by r_n and r_t; the seed uses Tolerance "
+          "= 1e-6), which sits at the round-off floor when forces are large. relative: "
+          "that residual against the first one of the Newton loop.");
       prm.declare_entry("Line search steps",
                         "5",
                         Patterns::Integer(0),
@@ -376,11 +382,13 @@ namespace StabilizedLagrangian
       status_max_iterations = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
       prm.enter_subsection("Newton");
-      newton_max_iterations = prm.get_integer("Maximum iterations");
-      newton_tolerance      = prm.get_double("Tolerance");
-      line_search_steps     = prm.get_integer("Line search steps");
-      newton_criterion      = prm.get("Residual") == "absolute" ? ResidualCriterion::absolute
-                                                                : ResidualCriterion::relative;
+      newton_max_iterations       = prm.get_integer("Maximum iterations");
+      newton_tolerance            = prm.get_double("Tolerance");
+      line_search_steps           = prm.get_integer("Line search steps");
+      const std::string criterion = prm.get("Residual");
+      newton_criterion            = criterion == "scaled"     ? ResidualCriterion::scaled
+                                    : criterion == "absolute" ? ResidualCriterion::absolute
+                                                              : ResidualCriterion::relative;
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -402,6 +410,15 @@ namespace StabilizedLagrangian
                         "system instead of failing. Pairs that violate the inf-sup condition "
                         "(Q1/P2) make the Newton system singular wherever contact is active; "
                         "with this their (non-unique) multipliers can be looked at.");
+      prm.declare_entry("Threads per rank",
+                        "1",
+                        Patterns::Integer(1, 256),
+                        "BLAS and OpenMP threads of each MPI rank (the direct solver's dense "
+                        "kernels). The program sets them itself, whatever OPENBLAS_NUM_THREADS "
+                        "or OMP_NUM_THREADS say, so a run does not depend on the environment; "
+                        "the command-line option --threads N overrides this entry. Different "
+                        "thread counts round differently: loop counts stay the same with the "
+                        "scaled Newton criterion, values agree to round-off.");
       prm.leave_subsection();
     }
 
@@ -411,6 +428,7 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Linear solver");
       direct_solver        = prm.get("Direct solver");
       null_pivot_detection = prm.get_bool("Null pivot detection");
+      threads_per_rank     = prm.get_integer("Threads per rank");
       if (null_pivot_detection && direct_solver != "Amesos_Mumps")
         throw InputError("Linear solver/Null pivot detection = true needs Direct solver = "
                          "Amesos_Mumps, got " +

@@ -9,8 +9,10 @@ MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CO
                OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
-def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=1200):
-    """Write prm_text to workdir/input.prm, run the program there, return (exit code, stdout+stderr).
+def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=1200,
+        environment=None):
+    """Write prm_text to workdir/input.prm, run the program there (with the variables of
+    `environment` added to its environment), return (exit code, stdout+stderr).
     Raises subprocess.TimeoutExpired after `timeout` seconds."""
     os.makedirs(workdir, exist_ok=True)
     prm = os.path.join(workdir, "input.prm")
@@ -19,7 +21,8 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=120
     command = [executable, "input.prm"]
     if ranks > 1:
         command = ["mpirun", "-np", str(ranks)] + command
-    result = subprocess.run(command, cwd=workdir, env=MPI_ENV, capture_output=True, text=True,
+    result = subprocess.run(command, cwd=workdir, env=dict(MPI_ENV, **(environment or {})),
+                            capture_output=True, text=True,
                             timeout=timeout)
     output = result.stdout + result.stderr
     if expect_success and result.returncode != 0:
@@ -42,10 +45,11 @@ GENERALIZED_NEWTON = "".join(nested_set(f"Nonlinear solver/{loop}/Method", "newt
 QUIET_OUTPUT = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
 
 
-def run_checked(executable, prm_text, workdir, check, name):
+def run_checked(executable, prm_text, workdir, check, name, environment=None):
     """Run prm_text in workdir (output in workdir/output, no vtu); check that it exits with 0,
     printing the end of its log if not; return whether it did."""
-    code, log = run(executable, prm_text + QUIET_OUTPUT, workdir, expect_success=False)
+    code, log = run(executable, prm_text + QUIET_OUTPUT, workdir, expect_success=False,
+                    environment=environment)
     check(code == 0, f"{name}: exit code {code}")
     if code != 0:
         print(log[-3000:])

@@ -108,12 +108,15 @@ namespace StabilizedLagrangian
       parse_parameters(ParameterHandler &prm);
     };
 
-    /** @brief Whether the Newton tolerance applies to the residual or to its ratio to the first
-     * one. */
+    /**
+     * @brief What the Newton tolerance is compared with (doc/formulation.md,
+     * "Newton stopping criterion").
+     */
     enum class ResidualCriterion
     {
-      absolute,
-      relative
+      scaled,   ///< each block against its own scale: forces, gaps, slips (default)
+      absolute, ///< the seed's: the residual in N (multiplier rows times r_n, r_t)
+      relative  ///< that residual against the first one of the Newton loop
     };
 
     /**
@@ -153,8 +156,9 @@ namespace StabilizedLagrangian
     /** @brief `Linear solver` subsection. */
     struct LinearSolver
     {
-      std::string direct_solver;
-      bool        null_pivot_detection = false; ///< MUMPS: solve singular systems
+      std::string  direct_solver;
+      bool         null_pivot_detection = false; ///< MUMPS: solve singular systems
+      unsigned int threads_per_rank     = 1;     ///< BLAS/OpenMP threads of each MPI rank
 
       static void
       declare_parameters(ParameterHandler &prm);

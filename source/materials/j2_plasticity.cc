@@ -80,6 +80,12 @@ namespace StabilizedLagrangian
       history[equivalent_plastic_strain_index] = 0.;
     }
 
+    namespace
+    {
+      /** relative distance to the yield surface within which a state counts as elastic */
+      constexpr double yield_surface_tolerance = 1e-10;
+    } // namespace
+
     template <int dim>
     typename J2Plasticity<dim>::ReturnMap
     J2Plasticity<dim>::radial_return(const SymmetricTensor<2, 3> &trial_elastic_strain,
@@ -102,7 +108,12 @@ namespace StabilizedLagrangian
                sqrt_two_thirds * hardening.yield_stress(old_equivalent_plastic_strain +
                                                         sqrt_two_thirds * delta_gamma);
       };
-      if (consistency(0.) <= 0.)
+      // A point that yielded in the previous step starts the next one on the
+      // yield surface, where round-off alone would decide elastic or plastic
+      // (and the tangent of the first Newton step): within 1e-10 of the yield
+      // stress it is elastic, whatever the rounding.
+      if (consistency(0.) <=
+          yield_surface_tolerance * hardening.yield_stress(old_equivalent_plastic_strain))
         return result;
 
       // Newton on Δγ, kept inside the bracket [lower, upper] where the

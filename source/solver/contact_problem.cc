@@ -20,6 +20,7 @@
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -52,6 +53,7 @@ namespace StabilizedLagrangian
     friction_law = FrictionLaws::create(prm);
     prm.leave_subsection();
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
+    pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
 
     std::ostringstream used;
     prm.print_parameters(used, ParameterHandler::PRM);
@@ -72,6 +74,15 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::setup_after_refinement()
   {
     choose_augmentation_parameters();
+    double E_max = 0., h_min = std::numeric_limits<double>::max();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          E_max = std::max(E_max, material_of(cell).youngs_modulus());
+          h_min = std::min(h_min, cell->minimum_vertex_distance());
+        }
+    nodal_stiffness = Utilities::MPI::max(E_max, mpi_communicator) *
+                      std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
     setup_dofs();
     setup_contact_points();
     material_history.initialize(
@@ -107,6 +118,15 @@ namespace StabilizedLagrangian
           weights[k] *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
       return weights;
     }
+
+    /**
+     * The floor of the force scale of the scaled Newton criterion, as a fraction
+     * of the force E h^(dim−2) U that displaces a node of a cell by the largest
+     * displacement U: the residual's round-off is about 1e-16–1e-14 of that
+     * force, so with the default tolerance 1e-8 the criterion stays two orders
+     * above round-off even when the body does not deform.
+     */
+    constexpr double force_scale_floor = 1e-4;
 
     std::string
     list_ids(const std::set<types::boundary_id> &ids)
@@ -375,9 +395,13 @@ namespace StabilizedLagrangian
     solution.reinit(locally_owned, mpi_communicator);
     ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
     step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
+    internal_force.reinit(locally_owned, mpi_communicator);
+    external_force.reinit(locally_owned, mpi_communicator);
+    multiplier_length_weights.reinit(locally_owned, mpi_communicator);
+    owned_multiplier_components = locally_owned_multiplier_components();
     residual_scaling.reinit(locally_owned, mpi_communicator);
     residual_scaling = 1.;
-    for (const auto &[row, component] : locally_owned_multiplier_components())
+    for (const auto &[row, component] : owned_multiplier_components)
       residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
     residual_scaling.compress(VectorOperation::insert);
   }
@@ -900,9 +924,16 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::assemble_newton_system(const bool assemble_matrix)
   {
     TimerOutput::Scope scope(timer, "assembly");
+    ++work.assemblies;
     if (assemble_matrix)
-      system_matrix = 0.;
-    system_rhs = 0.;
+      {
+        ++work.jacobians;
+        system_matrix = 0.;
+      }
+    system_rhs                = 0.;
+    internal_force            = 0.;
+    external_force            = 0.;
+    multiplier_length_weights = 0.;
     inadmissible_state.clear();
     // the deformable master's pairings, folded into the generalized Newton, are
     // refreshed before the assembly: a new pairing may need a new sparsity pattern
@@ -913,6 +944,9 @@ namespace StabilizedLagrangian
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+    internal_force.compress(VectorOperation::add);
+    external_force.compress(VectorOperation::add);
+    multiplier_length_weights.compress(VectorOperation::add);
     // every rank learns that one of them met an inadmissible state (the
     // messages are gathered only then)
     if (Utilities::MPI::max(static_cast<int>(!inadmissible_state.empty()), mpi_communicator) == 1)
@@ -933,7 +967,7 @@ namespace StabilizedLagrangian
     const unsigned int        n_dofs = fe.n_dofs_per_cell();
     const unsigned int        n_q    = cell_quadrature.size();
     FullMatrix<double>        cell_matrix(n_dofs, n_dofs);
-    Vector<double>            cell_rhs(n_dofs);
+    Vector<double>            cell_rhs(n_dofs), cell_external(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     std::vector<double>                  coefficients(n_dofs);
     std::vector<unsigned int>            component(n_dofs);
@@ -992,10 +1026,24 @@ namespace StabilizedLagrangian
                 }
             }
 
+          // the force scale of the scaled Newton criterion: internal forces
+          // without the Dirichlet constraints, so their rows hold the reactions
+          hanging_constraints.distribute_local_to_global(cell_rhs, dofs, internal_force);
+          bool loaded = false;
           for (const auto &bc : boundary_conditions.neumann)
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-                add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
+                {
+                  if (!loaded)
+                    cell_external = cell_rhs;
+                  loaded = true;
+                  add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
+                }
+          if (loaded)
+            {
+              cell_external -= cell_rhs;
+              hanging_constraints.distribute_local_to_global(cell_external, dofs, external_force);
+            }
 
           add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
         }
@@ -1037,7 +1085,7 @@ namespace StabilizedLagrangian
         folded(solver_parameters.geometry_method) && !master_surface && !obstacle->is_flat();
 
     FullMatrix<double>                   local_matrix;
-    Vector<double>                       local_rhs;
+    Vector<double>                       local_rhs, length_weights;
     std::vector<types::global_dof_index> local_dofs;
     // the displacement DoFs of the local system: the slave cell's, then the
     // paired master faces' (their shape functions enter with a minus sign:
@@ -1070,6 +1118,7 @@ namespace StabilizedLagrangian
         const unsigned int n   = n_d + n_m;
         local_matrix.reinit(n, n);
         local_rhs.reinit(n);
+        length_weights.reinit(n);
         local_dofs = evaluator.u_dofs;
         local_dofs.insert(local_dofs.end(), face_master_dofs.begin(), face_master_dofs.end());
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
@@ -1127,9 +1176,13 @@ namespace StabilizedLagrangian
               local_rhs(i) -= w * (normal_traction * normal_shape[i] +
                                    tangential_traction * tangential_shape[i]);
             for (unsigned int a = 0; a < n_m; ++a)
-              local_rhs(n_d + a) +=
-                  w * psi[a] *
-                  (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
+              {
+                local_rhs(n_d + a) +=
+                    w * psi[a] *
+                    (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
+                length_weights(n_d + a) +=
+                    w * psi[a] * (m_component[a] == 0 ? 1. : point.semi_multiplier_weight());
+              }
             if (!assemble_matrix)
               continue;
 
@@ -1192,6 +1245,8 @@ namespace StabilizedLagrangian
                   local_matrix(n_d + a, n_d + b) += w * block * psi[a] * psi[b];
                 }
           }
+        newton_constraints.distribute_local_to_global(
+            length_weights, local_dofs, multiplier_length_weights);
         add_to_global_system(local_matrix, local_rhs, local_dofs, assemble_matrix);
       }
   }
@@ -1262,6 +1317,43 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector scaled(system_rhs);
     scaled.scale(residual_scaling);
     return scaled.linfty_norm();
+  }
+
+  template <int dim>
+  ScaledResidual
+  ContactProblem<dim>::scaled_residual() const
+  {
+    // largest: force residual, force scale, gap, slip, displacement
+    double largest[5] = {0., 0., 0., 0., 0.};
+    for (const auto i : locally_owned_u)
+      {
+        largest[0] = std::max(largest[0], std::abs(system_rhs(i)));
+        largest[1] =
+            std::max({largest[1], std::abs(internal_force(i)), std::abs(external_force(i))});
+        largest[4] = std::max(largest[4], std::abs(solution(i)));
+      }
+    for (const auto &[row, component] : owned_multiplier_components)
+      if (multiplier_length_weights(row) > 0.)
+        {
+          double &block = largest[component == 0 ? 2 : 3];
+          block = std::max(block, std::abs(system_rhs(row)) / multiplier_length_weights(row));
+        }
+    Utilities::MPI::max(largest, mpi_communicator, largest);
+    // Floor of the force scale: where the body moves without deforming (a
+    // rigid motion before contact, a free rotation) the forces are round-off,
+    // so forces below those that displace a node of the stiffest, smallest
+    // cell by a fraction force_scale_floor of the largest displacement count
+    // as zero (doc/formulation.md).
+    largest[1] = std::max(largest[1], force_scale_floor * nodal_stiffness * largest[4]);
+    // a zero residual is converged even where its scale is zero (a body at rest)
+    const auto ratio = [](const double value, const double scale) {
+      return value == 0.  ? 0.
+             : scale > 0. ? value / scale
+                          : std::numeric_limits<double>::infinity();
+    };
+    return ScaledResidual{ratio(largest[0], largest[1]),
+                          ratio(largest[2], largest[4]),
+                          ratio(largest[3], largest[4])};
   }
 
   template <int dim>

@@ -5,12 +5,40 @@
 #include <Amesos_Mumps.h>
 #include <Epetra_LinearProblem.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
+#include <cstdlib>
 
 namespace StabilizedLagrangian
 {
   namespace LinearSolvers
   {
+    std::string
+    set_threads(const unsigned int n_threads)
+    {
+      // The BLAS behind MUMPS is a Debian alternative (OpenBLAS or the
+      // reference BLAS) and OpenMP may or may not be linked in: the setters are
+      // looked up at run time and called where they exist. OpenBLAS reads
+      // OPENBLAS_NUM_THREADS when it is loaded, before main(); the setter
+      // overrides it.
+      std::string report;
+      for (const char *setter : {"openblas_set_num_threads", "omp_set_num_threads"})
+        if (void *symbol = dlsym(RTLD_DEFAULT, setter))
+          {
+            reinterpret_cast<void (*)(int)>(symbol)(static_cast<int>(n_threads));
+            report += (report.empty() ? "" : ", ") + std::string(setter);
+          }
+      std::string overridden;
+      for (const char *variable : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+        if (const char *value = std::getenv(variable))
+          overridden += std::string(" ") + variable + "=" + value;
+      return std::to_string(n_threads) + " BLAS/OpenMP thread(s) per rank (" +
+             (report.empty() ? std::string("no threaded BLAS found") : "set by " + report) +
+             (overridden.empty() ? std::string(")")
+                                 : "; the environment's" + overridden + " is overridden)");
+    }
+
     DirectSolver::DirectSolver(const std::string &solver_name, const bool null_pivot_detection)
         : solver_name(solver_name)
         , null_pivot_detection(null_pivot_detection)

@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <limits>
 #include <regex>
+#include <sstream>
 
 namespace StabilizedLagrangian
 {
@@ -114,11 +115,13 @@ namespace StabilizedLagrangian
 
     output_results(0, 0.);
 
-    const double nominal_step  = load_stepping.end_time / load_stepping.n_steps;
-    const double smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
-    double       step_size     = nominal_step;
-    unsigned int step = 0, consecutive_cuts = 0;
-    Timer        wall_clock;
+    const double       nominal_step  = load_stepping.end_time / load_stepping.n_steps;
+    const double       smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
+    double             step_size     = nominal_step;
+    unsigned int       step = 0, consecutive_cuts = 0;
+    Timer              wall_clock;
+    const WorkCounters at_path_start = work;
+    WorkCounters       at_step_start = work;
     while (time < load_stepping.end_time * (1. - 1e-12))
       {
         step_size = std::min(step_size, load_stepping.end_time - time);
@@ -160,6 +163,11 @@ namespace StabilizedLagrangian
           }
         ++step;
         consecutive_cuts = 0;
+        stats.failed_newton_iterations =
+            work.newton_iterations - at_step_start.newton_iterations - stats.newton_iterations;
+        stats.assemblies = work.assemblies - at_step_start.assemblies;
+        stats.jacobians  = work.jacobians - at_step_start.jacobians;
+        at_step_start    = work;
         material_history.commit();
         stats.time = time;
         {
@@ -178,16 +186,25 @@ namespace StabilizedLagrangian
     pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
           << ", mean per load step: " << std::fixed << std::setprecision(2)
           << static_cast<double>(statistics.cumulative_newton_iterations()) / step
-          << std::defaultfloat << "\n";
+          << std::defaultfloat
+          << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
+          << "; assemblies: " << work.assemblies - at_path_start.assemblies << " ("
+          << work.jacobians - at_path_start.jacobians << " with the Jacobian)\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
-    write_run_summary(step, wall_clock.wall_time());
+    write_run_summary(step,
+                      wall_clock.wall_time(),
+                      WorkCounters{work.newton_iterations - at_path_start.newton_iterations,
+                                   work.assemblies - at_path_start.assemblies,
+                                   work.jacobians - at_path_start.jacobians});
     return true;
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::write_run_summary(const unsigned int n_steps, const double wall_time) const
+  ContactProblem<dim>::write_run_summary(const unsigned int  n_steps,
+                                         const double        wall_time,
+                                         const WorkCounters &path_work) const
   {
     // the slowest rank's time per phase
     const std::map<std::string, double> times =
@@ -199,7 +216,8 @@ namespace StabilizedLagrangian
       return;
     std::ofstream file(output_parameters.directory + "/run_summary.csv");
     file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
-            "newton_iterations,mean_newton_iterations_per_step,wall_time_s";
+            "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
+            "assemblies,jacobian_assemblies,wall_time_s";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
@@ -208,7 +226,8 @@ namespace StabilizedLagrangian
          << contact_parameters.r_n << ',' << contact_parameters.r_t << ',' << n_steps << ','
          << statistics.cumulative_newton_iterations() << ','
          << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
-         << wall_time;
+         << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
+         << path_work.jacobians << ',' << wall_time;
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';
@@ -222,8 +241,12 @@ namespace StabilizedLagrangian
     pcout << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(4)
           << s.time << "  geometry " << s.geometry_iterations << "  friction "
           << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
-          << std::setw(3) << s.newton_iterations << "  residual " << std::scientific
-          << std::setprecision(2) << s.final_residual << std::defaultfloat << "  contact "
+          << std::setw(3) << s.newton_iterations
+          << (s.failed_newton_iterations > 0
+                  ? " (+" + std::to_string(s.failed_newton_iterations) + " in cut attempts)"
+                  : std::string())
+          << "  residual " << std::scientific << std::setprecision(2) << s.final_residual
+          << " N, scaled " << s.final_scaled << std::defaultfloat << "  contact "
           << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
           << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
           << elapsed << " s, remaining ~" << remaining << " s" << std::defaultfloat << std::endl;
@@ -365,7 +388,7 @@ namespace StabilizedLagrangian
     // follows.
     assemble_newton_system(true);
     bool   jacobian_current  = true;
-    double first_residual    = 0.;
+    double first_measure     = 0.;
     double previous_residual = std::numeric_limits<double>::infinity();
     for (unsigned int iteration = 0;; ++iteration)
       {
@@ -380,26 +403,32 @@ namespace StabilizedLagrangian
             pcout << "  Newton: the residual is not finite\n";
             return false;
           }
+        const double scaled = scaled_residual().largest();
+        const double measure =
+            solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled ? scaled
+                                                                                        : residual;
         if (iteration == 0)
-          first_residual = residual;
+          first_measure = measure;
         if (output_parameters.log_newton)
-          pcout << "    Newton " << iteration << ": residual " << residual << "\n";
+          log_iterate(iteration);
         const bool   predictor = dirichlet_predictor;
         const double tolerance =
             solver_parameters.newton_tolerance *
-            (solver_parameters.newton_criterion == Parameters::ResidualCriterion::absolute
-                 ? 1.
-                 : first_residual);
-        if (!predictor && residual <= tolerance)
+            (solver_parameters.newton_criterion == Parameters::ResidualCriterion::relative
+                 ? first_measure
+                 : 1.);
+        if (!predictor && measure <= tolerance)
           {
-            stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, 0});
+            stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, scaled, 0});
             stats.newton_iterations += iteration;
             stats.final_residual = residual;
+            stats.final_scaled   = scaled;
             return true;
           }
         if (iteration == solver_parameters.newton_max_iterations)
           {
-            pcout << "  Newton: residual " << residual << " after " << iteration
+            pcout << "  Newton: residual " << residual << " N (" << measure
+                  << " against the criterion's tolerance " << tolerance << ") after " << iteration
                   << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
             return false;
           }
@@ -420,6 +449,7 @@ namespace StabilizedLagrangian
           TimerOutput::Scope scope(timer, "linear solve");
           solved = direct_solver->solve(system_matrix, update, system_rhs);
         }
+        ++work.newton_iterations;
         if (!solved)
           {
             pcout << "  Newton: the linear solver failed: the Newton system is singular. Usual "
@@ -488,17 +518,31 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::log_iterate(const unsigned int iteration) const
+  {
+    const ScaledResidual scaled = scaled_residual();
+    std::ostringstream   line;
+    line << std::setprecision(6) << "    Newton " << iteration << ": residual " << residual_norm()
+         << " N; scaled: force " << scaled.force << ", gap " << scaled.gap << ", slip "
+         << scaled.slip << "\n";
+    pcout << line.str();
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::log_trial(const double step)
   {
     unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       ++counts[static_cast<unsigned int>(point_response(state, k).status())];
     });
-    pcout << "      step length " << step << ": residual " << residual_norm()
-          << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
-          << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
-          << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
-          << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
+    std::ostringstream line;
+    line << std::setprecision(6) << "      step length " << step << ": residual " << residual_norm()
+         << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
+         << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
+         << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
+         << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
+    pcout << line.str();
   }
 
   template <int dim>
@@ -541,24 +585,26 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                     \
-  template bool   ContactProblem<dim>::run();                                                   \
-  template bool   ContactProblem<dim>::solve_load_path();                                       \
-  template void   ContactProblem<dim>::write_run_summary(unsigned int, double) const;           \
-  template void   ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;   \
-  template void   ContactProblem<dim>::apply_dirichlet_values(double);                          \
-  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                       \
-  template double ContactProblem<dim>::relative_displacement_change(                            \
-      const TrilinosWrappers::MPI::Vector &) const;                                             \
-  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                           \
-  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);             \
-  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
-  template bool ContactProblem<dim>::newton_loop(                                               \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);                              \
-  template void ContactProblem<dim>::line_search(                                               \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int);                     \
-  template void         ContactProblem<dim>::log_trial(double);                                 \
-  template unsigned int ContactProblem<dim>::update_statuses();                                 \
+#define SL_INSTANTIATE(dim)                                                                        \
+  template bool ContactProblem<dim>::run();                                                        \
+  template bool ContactProblem<dim>::solve_load_path();                                            \
+  template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
+      const;                                                                                       \
+  template void   ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;      \
+  template void   ContactProblem<dim>::apply_dirichlet_values(double);                             \
+  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                          \
+  template double ContactProblem<dim>::relative_displacement_change(                               \
+      const TrilinosWrappers::MPI::Vector &) const;                                                \
+  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                              \
+  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);                \
+  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);    \
+  template bool ContactProblem<dim>::newton_loop(                                                  \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);                                 \
+  template void ContactProblem<dim>::line_search(                                                  \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int);                        \
+  template void         ContactProblem<dim>::log_iterate(unsigned int) const;                      \
+  template void         ContactProblem<dim>::log_trial(double);                                    \
+  template unsigned int ContactProblem<dim>::update_statuses();                                    \
   template double       ContactProblem<dim>::update_friction_thresholds();
 
   SL_INSTANTIATE(2)

@@ -184,6 +184,17 @@ namespace StabilizedLagrangian
         return -(chi_f * (s / r_t) * (semi - projected) + (1. - chi_f) * semi);
       }
 
+      /**
+       * @brief The factor that turns the Λ equation into a length: χ_f s + (1 − χ_f) r_t.
+       * The residual divided by it is (Λ − P_B(ĝ))/r_t in contact, which is −Δs
+       * at a stick point, and Λ/r_t off contact: the length that moves ĝ by the
+       * mismatch. (The λ_n equation is a length already: g_n, or λ_n/r_n off contact.)
+       */
+      double
+      semi_multiplier_weight() const
+      {
+        return chi_f * s + (1. - chi_f) * r_t;
+      }
       /** @brief ∂(normal force)/∂g_n·(−1): the stiffness χ r_n of the u–u block along n. */
       double
       normal_stiffness() const

@@ -17,7 +17,8 @@ namespace StabilizedLagrangian
     unsigned int friction_iteration;
     unsigned int status_iteration;
     unsigned int newton_iterations;
-    double       residual;
+    double       residual; ///< in N (multiplier rows scaled by r_n, r_t)
+    double       scaled;   ///< the largest block against its scale (ScaledResidual)
     unsigned int status_changes;
   };
 
@@ -26,23 +27,28 @@ namespace StabilizedLagrangian
    */
   struct StepStatistics
   {
-    unsigned int                 step                = 0;
-    double                       time                = 0.;
-    double                       step_size           = 0.;
-    unsigned int                 cuts                = 0;
-    unsigned int                 geometry_iterations = 0;
-    unsigned int                 friction_iterations = 0;
-    unsigned int                 status_iterations   = 0;
-    unsigned int                 newton_iterations   = 0;
-    double                       final_residual      = 0.;
-    unsigned int                 contact_points      = 0;
-    unsigned int                 points_in_contact   = 0;
-    unsigned int                 points_stick        = 0;
-    unsigned int                 points_slip         = 0;
-    double                       normal_force        = 0.;
-    double                       tangential_force    = 0.;
-    std::array<double, 3>        contact_force       = {{0., 0., 0.}};
-    double                       wall_time           = 0.;
+    unsigned int step                = 0;
+    double       time                = 0.;
+    double       step_size           = 0.;
+    unsigned int cuts                = 0;
+    unsigned int geometry_iterations = 0;
+    unsigned int friction_iterations = 0;
+    unsigned int status_iterations   = 0;
+    unsigned int newton_iterations   = 0;
+    double       final_residual      = 0.; ///< in N
+    double       final_scaled        = 0.; ///< largest scaled block
+    /** Newton iterations of the attempts that failed and were cut (not in newton_iterations) */
+    unsigned int                 failed_newton_iterations = 0;
+    unsigned int                 assemblies               = 0; ///< all attempts
+    unsigned int                 jacobians                = 0; ///< all attempts
+    unsigned int                 contact_points           = 0;
+    unsigned int                 points_in_contact        = 0;
+    unsigned int                 points_stick             = 0;
+    unsigned int                 points_slip              = 0;
+    double                       normal_force             = 0.;
+    double                       tangential_force         = 0.;
+    std::array<double, 3>        contact_force            = {{0., 0., 0.}};
+    double                       wall_time                = 0.;
     std::vector<InnerLoopRecord> inner_loops;
   };
 
@@ -64,17 +70,25 @@ namespace StabilizedLagrangian
     void
     write(const StepStatistics &stats);
 
-    /** @brief Total Newton iterations so far. */
+    /** @brief Total Newton iterations of the accepted attempts so far. */
     unsigned int
     cumulative_newton_iterations() const
     {
       return cumulative_newton;
     }
 
+    /** @brief Total Newton iterations of the failed (cut) attempts so far. */
+    unsigned int
+    cumulative_failed_newton_iterations() const
+    {
+      return cumulative_failed;
+    }
+
   private:
     bool          root              = false;
     unsigned int  dimension         = 2;
     unsigned int  cumulative_newton = 0;
+    unsigned int  cumulative_failed = 0;
     std::ofstream statistics_file;
     std::ofstream iterations_file;
   };

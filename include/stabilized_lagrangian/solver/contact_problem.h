@@ -31,6 +31,8 @@
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 
+#include <algorithm>
+
 namespace StabilizedLagrangian
 {
   using namespace dealii;
@@ -58,6 +60,35 @@ namespace StabilizedLagrangian
     double             contact_pressure = 0.; ///< λ_n
     Tensor<1, dim - 1> semi_multiplier;       ///< Λ in the tangent basis
     double             JxW = 0.;
+  };
+
+  /**
+   * @brief The blocks of the Newton residual, each against its own scale
+   * (doc/formulation.md, "Newton stopping criterion"): dimensionless.
+   */
+  struct ScaledResidual
+  {
+    double force = 0.; ///< force rows against the largest nodal internal or external force
+    double gap   = 0.; ///< λ_n rows as lengths (a gap) against the largest displacement
+    double slip  = 0.; ///< Λ rows as lengths (a stick point's slip) against it
+
+    /** @brief The largest block: what the `scaled` criterion compares with the tolerance. */
+    double
+    largest() const
+    {
+      return std::max({force, gap, slip});
+    }
+  };
+
+  /**
+   * @brief Work done since the start of the run, failed attempts included:
+   * what a comparison of algorithms must count.
+   */
+  struct WorkCounters
+  {
+    unsigned long newton_iterations = 0; ///< Newton iterations (one linear solve each)
+    unsigned long assemblies        = 0; ///< residual assemblies, with or without the Jacobian
+    unsigned long jacobians         = 0; ///< assemblies with the Jacobian
   };
 
   /** @brief One row of the numerical inf-sup test (ContactProblem::run_inf_sup_test). */
@@ -120,6 +151,10 @@ namespace StabilizedLagrangian
     /** @brief Residual max norm in force units (multiplier rows scaled by r_n, r_t). */
     double
     residual_norm() const;
+
+    /** @brief The blocks of the last assembled residual against their scales. */
+    ScaledResidual
+    scaled_residual() const;
 
     /** @brief Number of displacement DoFs (the first block of the monolithic system). */
     types::global_dof_index
@@ -276,6 +311,9 @@ namespace StabilizedLagrangian
                 const double                         residual,
                 const double                         previous_residual,
                 const unsigned int                   max_halvings);
+    /** Print a Newton iterate: the residual in N and its scaled blocks. */
+    void
+    log_iterate(const unsigned int iteration) const;
     /** Print a line-search trial: step length, residual, open/stick/slip counts. */
     void
     log_trial(const double step);
@@ -388,8 +426,12 @@ namespace StabilizedLagrangian
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
     void
     print_step_line(const StepStatistics &stats, const double elapsed) const;
+    /** run_summary.csv of the load path: @p path_work is the work it took, failed attempts included
+     */
     void
-    write_run_summary(const unsigned int n_steps, const double wall_time) const;
+    write_run_summary(const unsigned int  n_steps,
+                      const double        wall_time,
+                      const WorkCounters &path_work) const;
     /** Call f(state, kinematics) at every locally owned contact point. */
     template <typename Function>
     void
@@ -501,6 +543,23 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector ghosted_solution;        ///< relevant, kept in sync with solution
     TrilinosWrappers::MPI::Vector step_start;              ///< relevant, solution at the step start
     TrilinosWrappers::MPI::Vector residual_scaling;        ///< 1, r_n or r_t per owned row
+    /** owned: the nodal internal forces ∫σ:∇φ_i of the last assembly (reactions included) */
+    TrilinosWrappers::MPI::Vector internal_force;
+    /** owned: the nodal external (Neumann) forces of the last assembly */
+    TrilinosWrappers::MPI::Vector external_force;
+    /**
+     * owned, multiplier rows: the weight that turns the row's residual into a
+     * length, ∫ψ_j on the λ_n rows and ∫ψ_j (χ_f s + (1 − χ_f) r_t) on the Λ rows
+     */
+    TrilinosWrappers::MPI::Vector multiplier_length_weights;
+    /** the multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row */
+    std::vector<std::pair<types::global_dof_index, unsigned int>> owned_multiplier_components;
+    WorkCounters                                                  work;
+    /**
+     * E_max h_min^(dim−2): the nodal stiffness of the stiffest, smallest cell
+     * (N/mm; per mm of thickness in 2D), for the floor of the force scale
+     */
+    double nodal_stiffness = 0.;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     bool                          dirichlet_predictor = false;

@@ -16,6 +16,15 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
+     * @brief Set the BLAS (OpenBLAS) and OpenMP threads of this process to
+     * @p n_threads, whatever the environment says, so that the dense kernels of
+     * the direct solver round the same way on every machine of a kind.
+     * @return what was set, and which environment variables it overrides, for the log
+     */
+    std::string
+    set_threads(const unsigned int n_threads);
+
+    /**
      * @brief Trilinos Amesos sparse direct solver for the Newton systems.
      *
      * The sparsity pattern of the Newton matrix is fixed for a whole run, so
