@@ -14,7 +14,7 @@ namespace
   using namespace dealii;
   using namespace StabilizedLagrangian;
 
-  const char *usage = R"(Usage: stabilized_lagrangian [--threads N] [input.prm]
+  const char *usage = R"(Usage: stabilized_lagrangian [--threads N] [--resume] [input.prm]
        stabilized_lagrangian --inf-sup [N] input.prm
        stabilized_lagrangian --print-parameters [2|3]
        stabilized_lagrangian --help
@@ -25,6 +25,8 @@ status, Newton). Without an argument the built-in default scene runs:
 the elastic patin of the seed paper (prm/patin_elastic.prm).
 
   input.prm            run the scene described by this parameter file
+  --resume             continue from the last checkpoint in the output directory
+                       (Output/Checkpoint interval), on the same number of ranks
   --threads N          BLAS/OpenMP threads per MPI rank (default: the entry
                        Linear solver/Threads per rank, 1); the environment's
                        OPENBLAS_NUM_THREADS and OMP_NUM_THREADS are ignored
@@ -43,7 +45,8 @@ Output goes to the directory of the entry Output/Output directory.
   run(const std::string &text,
       const bool         is_file,
       const unsigned int inf_sup_meshes,
-      const std::string &threads)
+      const std::string &threads,
+      const bool         resume)
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
@@ -60,7 +63,7 @@ Output goes to the directory of the entry Output/Output directory.
         problem.run_inf_sup_test(inf_sup_meshes);
         return 0;
       }
-    return problem.run() ? 0 : 2;
+    return problem.run(resume) ? 0 : 2;
   }
 } // namespace
 
@@ -103,6 +106,10 @@ main(int argc, char *argv[])
           threads = *(option + 1);
           files.erase(option, option + 2);
         }
+      const auto resume_option = std::find(files.begin(), files.end(), "--resume");
+      const bool resume        = resume_option != files.end();
+      if (resume)
+        files.erase(resume_option);
       unsigned int inf_sup_meshes = 0;
       if (!files.empty() && files[0] == "--inf-sup")
         {
@@ -123,11 +130,13 @@ main(int argc, char *argv[])
       if (files.size() > 1 || (!files.empty() && files[0].rfind("-", 0) == 0))
         throw InputError(std::string("Unexpected arguments.\n") + usage);
 
-      const bool         is_file = !files.empty();
-      const std::string  text    = is_file ? files[0] : std::string(default_scene_prm);
-      const unsigned int dim     = Parameters::read_dimension(text, is_file);
-      return dim == 2 ? run<2>(text, is_file, inf_sup_meshes, threads)
-                      : run<3>(text, is_file, inf_sup_meshes, threads);
+      const bool is_file = !files.empty();
+      if (resume && (!is_file || inf_sup_meshes > 0))
+        throw InputError("--resume needs the parameter file of the run to continue.");
+      const std::string  text = is_file ? files[0] : std::string(default_scene_prm);
+      const unsigned int dim  = Parameters::read_dimension(text, is_file);
+      return dim == 2 ? run<2>(text, is_file, inf_sup_meshes, threads, resume)
+                      : run<3>(text, is_file, inf_sup_meshes, threads, resume);
     }
   catch (const InputError &e)
     {

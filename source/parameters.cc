@@ -448,6 +448,18 @@ namespace StabilizedLagrangian
                         "true",
                         Patterns::Bool(),
                         "Write a contact-surface profile .csv per load step.");
+      prm.declare_entry(
+          "Checkpoint interval",
+          "0",
+          Patterns::Integer(0),
+          "Load steps between checkpoints (0: none). A checkpoint (directory "
+          "`checkpoint` in the output directory, replaced atomically) holds the "
+          "mesh with its refinements, the solution, the multipliers, the contact "
+          "points' states, the material history, the step controller and the "
+          "statistics; `stabilized_lagrangian --resume input.prm` continues from "
+          "it on the same number of MPI ranks. Between a resume and its "
+          "checkpoint only `Load stepping/End time`, the `Output` entries "
+          "other than the directory and `Linear solver/Threads per rank` may change.");
       prm.declare_entry("Log Newton iterations",
                         "false",
                         Patterns::Bool(),
@@ -505,10 +517,11 @@ namespace StabilizedLagrangian
     Output::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
-      directory      = prm.get("Output directory");
-      write_vtu      = prm.get_bool("Write vtu");
-      write_profiles = prm.get_bool("Write profiles");
-      log_newton     = prm.get_bool("Log Newton iterations");
+      directory           = prm.get("Output directory");
+      write_vtu           = prm.get_bool("Write vtu");
+      write_profiles      = prm.get_bool("Write profiles");
+      log_newton          = prm.get_bool("Log Newton iterations");
+      checkpoint_interval = prm.get_integer("Checkpoint interval");
       prm.leave_subsection();
     }
 

@@ -191,10 +191,11 @@ namespace StabilizedLagrangian
     /** @brief `Output` subsection. */
     struct Output
     {
-      std::string directory;
-      bool        write_vtu;
-      bool        write_profiles;
-      bool        log_newton; ///< print every Newton iterate and line-search trial
+      std::string  directory;
+      bool         write_vtu;
+      bool         write_profiles;
+      bool         log_newton;              ///< print every Newton iterate and line-search trial
+      unsigned int checkpoint_interval = 0; ///< load steps between checkpoints, 0: none
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -10,6 +10,7 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <sstream>
 
 namespace StabilizedLagrangian
 {
@@ -267,12 +269,10 @@ namespace StabilizedLagrangian
         data_out.build_patches(fe_pair->displacement_degree());
         const std::string record = data_out.write_vtu_with_pvtu_record(
             directory + "/", "solution", step, mpi_communicator, 5, 0);
-        if (root)
-          {
-            pvd_records.emplace_back(t, record);
-            std::ofstream pvd(directory + "/solution.pvd");
-            DataOutBase::write_pvd_record(pvd, pvd_records);
-          }
+        // the .pvd lists a step only once every rank's piece is complete
+        MPI_Barrier(mpi_communicator);
+        pvd_records.emplace_back(t, record);
+        write_pvd();
       }
 
     if (output_parameters.write_profiles && step > 0)
@@ -298,8 +298,8 @@ namespace StabilizedLagrangian
             std::sort(sorted.begin(), sorted.end());
             std::ostringstream name;
             name << directory << "/profile-" << std::setw(5) << std::setfill('0') << step << ".csv";
-            std::ofstream file(name.str());
-            const char   *axes[] = {"x_mm", "y_mm", "z_mm"};
+            std::ostringstream file;
+            const char        *axes[] = {"x_mm", "y_mm", "z_mm"};
             for (unsigned int d = 0; d < dim; ++d)
               file << axes[d] << ',';
             file << "contact_pressure_MPa";
@@ -317,8 +317,20 @@ namespace StabilizedLagrangian
                   file << (c ? "," : "") << row[c];
                 file << '\n';
               }
+            SafeFiles::write_atomically(name.str(), file.str());
           }
       }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_pvd() const
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ostringstream pvd;
+    DataOutBase::write_pvd_record(pvd, pvd_records);
+    SafeFiles::write_atomically(output_parameters.directory + "/solution.pvd", pvd.str());
   }
 
   // the class itself is instantiated once, in contact_problem.cc
@@ -326,4 +338,8 @@ namespace StabilizedLagrangian
   ContactProblem<2>::output_results(unsigned int, double);
   template void
   ContactProblem<3>::output_results(unsigned int, double);
+  template void
+  ContactProblem<2>::write_pvd() const;
+  template void
+  ContactProblem<3>::write_pvd() const;
 } // namespace StabilizedLagrangian

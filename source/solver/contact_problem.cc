@@ -1407,17 +1407,22 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::refine_mesh()
   {
     if (adaptive_refinement.criterion == Parameters::AdaptiveRefinement::Criterion::active_set)
+      refine_around_active_set();
+    else
       {
-        refine_around_active_set();
-        return;
+        // Kelly indicators of the displacement of the last converged state
+        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+        Vector<float>                       indicators(triangulation.n_active_cells());
+        KellyErrorEstimator<dim>::estimate(
+            dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
+        parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+            triangulation, indicators, adaptive_refinement.fraction, 0.);
       }
-    // Kelly indicators of the displacement of the last converged state
-    const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
-    Vector<float>                       indicators(triangulation.n_active_cells());
-    KellyErrorEstimator<dim>::estimate(
-        dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
-    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-        triangulation, indicators, adaptive_refinement.fraction, 0.);
+    // the flags this rank set, so that a resumed run rebuilds the same mesh
+    refinement_history.emplace_back();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->refine_flag_set())
+        refinement_history.back().push_back(cell->id());
     triangulation.execute_coarsening_and_refinement();
   }
 
@@ -1453,7 +1458,6 @@ namespace StabilizedLagrangian
               adaptive_refinement.band * zone_size + 0.5 * cell->diameter())
             cell->set_refine_flag();
         }
-    triangulation.execute_coarsening_and_refinement();
   }
 
   template class ContactProblem<2>;

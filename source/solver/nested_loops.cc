@@ -4,6 +4,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 
@@ -23,33 +24,33 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::run()
+  ContactProblem<dim>::run(const bool resume)
   {
     const bool        root            = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     const std::string final_directory = output_parameters.directory;
+    run_directory                     = final_directory;
     if (root)
-      {
-        std::filesystem::create_directories(final_directory);
-        std::ofstream(final_directory + "/parameters.prm") << parameters_used;
-      }
+      std::filesystem::create_directories(final_directory);
     MPI_Barrier(mpi_communicator);
     setup();
-    geometry_loop_needed = master_surface || !(obstacle->is_flat() && !finite_strain());
+    geometry_loop_needed           = master_surface || !(obstacle->is_flat() && !finite_strain());
+    const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
+    if (root)
+      SafeFiles::write_atomically(final_directory + "/parameters.prm", parameters_used);
 
     // Adaptive refinement (`Adaptive refinement/Cycles`, 0 by default): the
     // load path is solved on each mesh in turn; the last one writes into the
     // output directory.
-    const unsigned int n_cycles = adaptive_refinement.cycles;
-    std::ofstream      cycles_file;
-    if (root && n_cycles > 0)
+    const unsigned int n_cycles    = adaptive_refinement.cycles;
+    const std::string  cycles_path = final_directory + "/refinement_cycles.csv";
+    if (root && n_cycles > 0 && !resume)
+      SafeFiles::write_atomically(cycles_path,
+                                  "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
+                                  "normal_force_N,wall_time_s\n");
+    for (cycle = first_cycle; cycle <= n_cycles; ++cycle)
       {
-        cycles_file.open(final_directory + "/refinement_cycles.csv");
-        cycles_file << "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
-                       "normal_force_N,wall_time_s\n";
-      }
-    for (unsigned int cycle = 0; cycle <= n_cycles; ++cycle)
-      {
-        if (cycle > 0)
+        const bool resumed = resume && cycle == first_cycle;
+        if (cycle > 0 && !resumed)
           {
             TimerOutput::Scope scope(timer, "setup");
             refine_mesh();
@@ -61,12 +62,16 @@ namespace StabilizedLagrangian
                                           ? final_directory + "/cycle-" + std::to_string(cycle)
                                           : final_directory;
         Timer      cycle_clock;
-        const bool converged = solve_load_path();
+        const bool converged = solve_load_path(resumed);
         if (root && n_cycles > 0)
-          cycles_file << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
-                      << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
-                      << std::setprecision(10) << last_normal_force << ','
-                      << cycle_clock.wall_time() << std::endl;
+          {
+            std::ostringstream row;
+            row << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
+                << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
+                << std::setprecision(10) << last_normal_force << ',' << cycle_clock.wall_time()
+                << '\n';
+            SafeFiles::append(cycles_path, row.str());
+          }
         if (!converged)
           return false;
       }
@@ -75,14 +80,20 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::solve_load_path()
+  ContactProblem<dim>::solve_load_path(const bool resumed)
   {
-    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    if (root)
-      std::filesystem::create_directories(output_parameters.directory);
-    statistics.open(output_parameters.directory, dim, root);
-    pvd_records.clear();
-    active_set.clear();
+    const bool   root         = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    const double nominal_step = load_stepping.end_time / load_stepping.n_steps;
+    if (!resumed)
+      {
+        if (root)
+          std::filesystem::create_directories(output_parameters.directory);
+        statistics.open(output_parameters.directory, dim, root);
+        pvd_records.clear();
+        active_set.clear();
+        controller      = StepController{0, nominal_step, 0};
+        path_start_work = work;
+      }
     timer.reset();
 
     pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
@@ -113,15 +124,14 @@ namespace StabilizedLagrangian
       if (folded(method))
         pcout << "  " << loop << " loop folded into the generalized Newton\n";
 
-    output_results(0, 0.);
+    if (!resumed)
+      output_results(0, 0.);
 
-    const double       nominal_step  = load_stepping.end_time / load_stepping.n_steps;
-    const double       smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
-    double             step_size     = nominal_step;
-    unsigned int       step = 0, consecutive_cuts = 0;
-    Timer              wall_clock;
-    const WorkCounters at_path_start = work;
-    WorkCounters       at_step_start = work;
+    const double  smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
+    unsigned int &step          = controller.step;
+    double       &step_size     = controller.step_size;
+    Timer         wall_clock;
+    WorkCounters  at_step_start = work;
     while (time < load_stepping.end_time * (1. - 1e-12))
       {
         step_size = std::min(step_size, load_stepping.end_time - time);
@@ -133,7 +143,7 @@ namespace StabilizedLagrangian
         StepStatistics stats;
         stats.step      = step + 1;
         stats.step_size = step_size;
-        stats.cuts      = consecutive_cuts;
+        stats.cuts      = controller.consecutive_cuts;
         Timer step_clock;
         time = saved_time + step_size;
         apply_dirichlet_values(time);
@@ -156,13 +166,13 @@ namespace StabilizedLagrangian
                       << output_parameters.directory << ".\n";
                 return false;
               }
-            ++consecutive_cuts;
+            ++controller.consecutive_cuts;
             step_size /= 2.;
             pcout << "  step did not converge; cutting the step to " << step_size << "\n";
             continue;
           }
         ++step;
-        consecutive_cuts = 0;
+        controller.consecutive_cuts = 0;
         stats.failed_newton_iterations =
             work.newton_iterations - at_step_start.newton_iterations - stats.newton_iterations;
         stats.assemblies = work.assemblies - at_step_start.assemblies;
@@ -182,21 +192,24 @@ namespace StabilizedLagrangian
         print_step_line(stats, wall_clock.wall_time());
         // grow back towards the nominal step after a cut
         step_size = std::min(2. * step_size, nominal_step);
+        if (output_parameters.checkpoint_interval > 0 &&
+            step % output_parameters.checkpoint_interval == 0)
+          write_checkpoint();
       }
     pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
           << ", mean per load step: " << std::fixed << std::setprecision(2)
           << static_cast<double>(statistics.cumulative_newton_iterations()) / step
           << std::defaultfloat
           << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
-          << "; assemblies: " << work.assemblies - at_path_start.assemblies << " ("
-          << work.jacobians - at_path_start.jacobians << " with the Jacobian)\n";
+          << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
+          << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
     write_run_summary(step,
                       wall_clock.wall_time(),
-                      WorkCounters{work.newton_iterations - at_path_start.newton_iterations,
-                                   work.assemblies - at_path_start.assemblies,
-                                   work.jacobians - at_path_start.jacobians});
+                      WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
+                                   work.assemblies - path_start_work.assemblies,
+                                   work.jacobians - path_start_work.jacobians});
     return true;
   }
 
@@ -214,7 +227,7 @@ namespace StabilizedLagrangian
       slowest[section] = Utilities::MPI::max(seconds, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
-    std::ofstream file(output_parameters.directory + "/run_summary.csv");
+    std::ostringstream file;
     file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
             "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
             "assemblies,jacobian_assemblies,wall_time_s";
@@ -231,6 +244,7 @@ namespace StabilizedLagrangian
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';
+    SafeFiles::write_atomically(output_parameters.directory + "/run_summary.csv", file.str());
   }
 
   template <int dim>
@@ -586,8 +600,8 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                        \
-  template bool ContactProblem<dim>::run();                                                        \
-  template bool ContactProblem<dim>::solve_load_path();                                            \
+  template bool ContactProblem<dim>::run(bool);                                                    \
+  template bool ContactProblem<dim>::solve_load_path(bool);                                        \
   template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
       const;                                                                                       \
   template void   ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;      \

@@ -81,6 +81,23 @@ namespace StabilizedLagrangian
         committed_values = trial_values;
       }
 
+      /** @brief The committed values of every cell (for a checkpoint). */
+      const std::vector<double> &
+      committed_data() const
+      {
+        return committed_values;
+      }
+
+      /** @brief Restore committed (and trial) values saved by committed_data() on this mesh. */
+      void
+      restore(const std::vector<double> &values)
+      {
+        AssertThrow(values.size() == committed_values.size(),
+                    ExcMessage("the checkpoint's material history does not fit this mesh"));
+        committed_values = values;
+        trial_values     = values;
+      }
+
     private:
       std::size_t
       offset(const unsigned int cell_index, const unsigned int q) const

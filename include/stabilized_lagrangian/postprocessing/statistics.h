@@ -1,7 +1,6 @@
 #pragma once
 
 #include <array>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -53,18 +52,42 @@ namespace StabilizedLagrangian
   };
 
   /**
-   * @brief Writes statistics.csv and iterations.csv on rank 0, one row at a time
-   * and flushed, so the rows of converged steps survive a failing run.
+   * @brief Writes statistics.csv and iterations.csv on rank 0, the rows of one
+   * load step appended in one write (SafeFiles::append), so a run killed at any
+   * moment leaves whole rows, and the rows of converged steps survive a failing run.
    */
   class StatisticsWriter
   {
   public:
+    /** @brief What a checkpoint keeps to continue the files where it was taken. */
+    struct State
+    {
+      unsigned long statistics_bytes  = 0; ///< size of statistics.csv
+      unsigned long iterations_bytes  = 0; ///< size of iterations.csv
+      unsigned int  cumulative_newton = 0;
+      unsigned int  cumulative_failed = 0;
+    };
+
     /**
      * @brief Create both files in @p directory and write their headers (rank 0
-     * only); closes the previous ones and restarts the Newton count.
+     * only); restarts the Newton counts.
      */
     void
     open(const std::string &directory, const unsigned int dim, const bool is_root);
+
+    /**
+     * @brief Continue the files of @p directory from a checkpoint: cut them to the
+     * rows it knew of (a killed run may have written more) and restore the counts.
+     */
+    void
+    resume(const std::string &directory,
+           const unsigned int dim,
+           const bool         is_root,
+           const State       &state);
+
+    /** @brief The state to store in a checkpoint. */
+    State
+    state() const;
 
     /** @brief Append the rows of one converged load step. */
     void
@@ -85,11 +108,11 @@ namespace StabilizedLagrangian
     }
 
   private:
-    bool          root              = false;
-    unsigned int  dimension         = 2;
-    unsigned int  cumulative_newton = 0;
-    unsigned int  cumulative_failed = 0;
-    std::ofstream statistics_file;
-    std::ofstream iterations_file;
+    bool         root              = false;
+    unsigned int dimension         = 2;
+    unsigned int cumulative_newton = 0;
+    unsigned int cumulative_failed = 0;
+    std::string  statistics_path;
+    std::string  iterations_path;
   };
 } // namespace StabilizedLagrangian

@@ -121,9 +121,13 @@ namespace StabilizedLagrangian
      */
     ContactProblem(ParameterHandler &prm, const bool verbose = true);
 
-    /** @brief Solve every load step; returns false if a step could not be solved. */
+    /**
+     * @brief Solve every load step; returns false if a step could not be solved.
+     * @param resume continue from the checkpoint in the output directory
+     * (source/solver/checkpoint.cc) instead of starting from rest
+     */
     bool
-    run();
+    run(const bool resume = false);
 
     /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points. */
     void
@@ -287,10 +291,32 @@ namespace StabilizedLagrangian
       std::vector<double>         m_coefficients;
     };
 
+    /** Where the load stepping stands: what a checkpoint keeps of it. */
+    struct StepController
+    {
+      unsigned int step             = 0;  ///< converged load steps
+      double       step_size        = 0.; ///< of the next attempt
+      unsigned int consecutive_cuts = 0;
+    };
+
     // --- nested_loops.cc: DESIGN §3 ---
-    /** The whole load path on the current mesh, from rest. */
+    /**
+     * The whole load path on the current mesh, from rest, or with @p resumed
+     * from the state a checkpoint restored.
+     */
     bool
-    solve_load_path();
+    solve_load_path(const bool resumed = false);
+
+    // --- checkpoint.cc ---
+    /** Write a checkpoint of the current state (every rank), replacing the previous one. */
+    void
+    write_checkpoint() const;
+    /**
+     * Rebuild the mesh and restore the state of the checkpoint in the output
+     * directory (after setup()); returns the adaptive refinement cycle it was taken in.
+     */
+    unsigned int
+    restore_checkpoint();
     bool
     solve_load_step(StepStatistics &stats);
     bool
@@ -459,7 +485,7 @@ namespace StabilizedLagrangian
     /** Refine the mesh by the criterion of `Adaptive refinement`. */
     void
     refine_mesh();
-    /** Refine the cells near the recorded active set. */
+    /** Flag the cells near the recorded active set for refinement. */
     void
     refine_around_active_set();
     /**
@@ -485,6 +511,9 @@ namespace StabilizedLagrangian
     // --- output.cc ---
     void
     output_results(const unsigned int step, const double time);
+    /** Write solution.pvd from pvd_records, atomically (rank 0). */
+    void
+    write_pvd() const;
     /** The history fields of every material, each name once. */
     std::vector<std::string>
     history_field_names() const;
@@ -576,5 +605,11 @@ namespace StabilizedLagrangian
     std::string                                 parameters_used;
     std::vector<std::pair<double, std::string>> pvd_records;
     StatisticsWriter                            statistics;
+    StepController                              controller;
+    unsigned int                                cycle = 0; ///< adaptive refinement cycle
+    std::string  run_directory;   ///< `Output directory` (the cycles write into subdirectories)
+    WorkCounters path_start_work; ///< work when the load path began
+    /** per adaptive refinement cycle, the cells this rank flagged for refinement */
+    std::vector<std::vector<CellId>> refinement_history;
   };
 } // namespace StabilizedLagrangian
