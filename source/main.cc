@@ -83,6 +83,10 @@ main(int argc, char *argv[])
         }
       if (!args.empty() && args[0] == "--print-parameters")
         {
+          if (args.size() > 2 || (args.size() == 2 && args[1] != "2" && args[1] != "3"))
+            throw InputError("--print-parameters takes the dimension, 2 or 3 (default 2), "
+                             "and nothing else.\n" +
+                             std::string(usage));
           const unsigned int dim = args.size() > 1 ? std::stoi(args[1]) : 2;
           ParameterHandler   prm;
           if (dim == 3)
@@ -127,8 +131,12 @@ main(int argc, char *argv[])
           if (files.size() != 1)
             throw InputError(std::string("--inf-sup needs a parameter file.\n") + usage);
         }
-      if (files.size() > 1 || (!files.empty() && files[0].rfind("-", 0) == 0))
-        throw InputError(std::string("Unexpected arguments.\n") + usage);
+      for (const auto &argument : files)
+        if (argument.rfind("-", 0) == 0)
+          throw InputError("unknown option '" + argument + "'.\n" + usage);
+      if (files.size() > 1)
+        throw InputError("one parameter file at most, got " + std::to_string(files.size()) + ".\n" +
+                         usage);
 
       const bool is_file = !files.empty();
       if (resume && (!is_file || inf_sup_meshes > 0))

@@ -59,6 +59,8 @@ code, log = sltest.run(executable, text, out, expect_success=False)
 check(code == 2, f"non-convergence: exit code {code}")
 check(log.count("cutting the step") == 2 and "did not converge after 2 step cuts" in log,
       "non-convergence: the step is halved twice, then a clear message")
+check("cutting the step to 0.025" in log and "with the step 0.025" in log,
+      "non-convergence: the log gives the step sizes in full (0.025, not 0.03)")
 check(os.path.isfile(f"{out}/output/statistics.csv") and os.path.isfile(f"{out}/output/solution.pvd"),
       "non-convergence: statistics.csv and solution.pvd are kept")
 
@@ -76,6 +78,21 @@ check(code == 2 and "J = det F" in log and "admissible range" in log,
 result = subprocess.run([executable, f"{workdir}/does-not-exist.prm"], capture_output=True, text=True)
 check(result.returncode != 0 and "does-not-exist.prm" in result.stderr,
       f"missing file: exit code {result.returncode}, message: {result.stderr.strip()[:120]}")
+
+# the command line: each mistake is named and exits with 1
+for arguments, expected in ((["--print-parameters", "7"], "2 or 3"),
+                            (["--print-parameters", "x"], "2 or 3"),
+                            (["--print-parameters", "2", "3"], "2 or 3"),
+                            (["--frobnicate"], "unknown option '--frobnicate'"),
+                            (["a.prm", "b.prm"], "one parameter file at most"),
+                            (["--threads", "0", "a.prm"], "--threads N"),
+                            (["--threads"], "--threads N"),
+                            (["--resume"], "--resume needs the parameter file"),
+                            (["--inf-sup", "x", "a.prm"], "--inf-sup N")):
+    result = subprocess.run([executable] + arguments, capture_output=True, text=True)
+    check(result.returncode == 1 and expected in result.stderr,
+          f"command line {' '.join(arguments)}: exit code {result.returncode}, "
+          f"message names '{expected}'")
 
 # no NaN in any CSV written (the .vtu files are compressed; the ParaView test
 # reads them and checks their arrays for NaN)

@@ -196,10 +196,11 @@ namespace StabilizedLagrangian
             step % output_parameters.checkpoint_interval == 0)
           write_checkpoint();
       }
+    std::ostringstream mean;
+    mean << std::fixed << std::setprecision(2)
+         << static_cast<double>(statistics.cumulative_newton_iterations()) / step;
     pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
-          << ", mean per load step: " << std::fixed << std::setprecision(2)
-          << static_cast<double>(statistics.cumulative_newton_iterations()) / step
-          << std::defaultfloat
+          << ", mean per load step: " << mean.str()
           << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
           << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
           << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n";
@@ -252,18 +253,21 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::print_step_line(const StepStatistics &s, const double elapsed) const
   {
     const double remaining = elapsed / time * (load_stepping.end_time - time);
-    pcout << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(4)
-          << s.time << "  geometry " << s.geometry_iterations << "  friction "
-          << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
-          << std::setw(3) << s.newton_iterations
-          << (s.failed_newton_iterations > 0
-                  ? " (+" + std::to_string(s.failed_newton_iterations) + " in cut attempts)"
-                  : std::string())
-          << "  residual " << std::scientific << std::setprecision(2) << s.final_residual
-          << " N, scaled " << s.final_scaled << std::defaultfloat << "  contact "
-          << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
-          << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
-          << elapsed << " s, remaining ~" << remaining << " s" << std::defaultfloat << std::endl;
+    // formatted apart, so that the log's stream keeps its own precision
+    std::ostringstream line;
+    line << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(6)
+         << s.time << "  geometry " << s.geometry_iterations << "  friction "
+         << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
+         << std::setw(3) << s.newton_iterations
+         << (s.failed_newton_iterations > 0
+                 ? " (+" + std::to_string(s.failed_newton_iterations) + " in cut attempts)"
+                 : std::string())
+         << "  residual " << std::scientific << std::setprecision(2) << s.final_residual
+         << " N, scaled " << s.final_scaled << std::defaultfloat << "  contact "
+         << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
+         << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
+         << elapsed << " s, remaining ~" << remaining << " s\n";
+    pcout << line.str() << std::flush;
   }
 
   template <int dim>
