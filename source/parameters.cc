@@ -205,6 +205,10 @@ namespace StabilizedLagrangian
         try
           {
             function->parse_parameters(prm);
+            // the expression is compiled at its first evaluation: an undefined
+            // name shows up here, before anything is written, not mid-run
+            Vector<double> probe(dim);
+            function->vector_value(Point<dim>(), probe);
           }
         catch (const ExceptionBase &e)
           {

@@ -79,6 +79,36 @@ result = subprocess.run([executable, f"{workdir}/does-not-exist.prm"], capture_o
 check(result.returncode != 0 and "does-not-exist.prm" in result.stderr,
       f"missing file: exit code {result.returncode}, message: {result.stderr.strip()[:120]}")
 
+# output directories: a shorter run into the directory of a longer one leaves
+# none of its files behind; a bad expression stops the run before anything is
+# written; a file name taken by a directory, or a directory that cannot be
+# created, is named with the entry
+short = base.replace("set Global refinements = 4", "set Global refinements = 2")
+out = f"{workdir}/reused_directory"
+sltest.run(executable, short, out)
+sltest.run(executable, short.replace("set Number of load steps = 10", "set Number of load steps = 4"),
+           out)
+names = sorted(os.listdir(f"{out}/output"))
+check("profile-00004.csv" in names and "profile-00005.csv" not in names and
+      "solution_00005.pvtu" not in names and len(sltest.read_csv(f"{out}/output/statistics.csv")) == 4,
+      f"a 4-step run into a 10-step run's directory leaves only its own files ({len(names)} files)")
+kept = open(f"{out}/output/parameters.prm").read()
+code, log = sltest.run(executable, short.replace("-u0*min", "-uu*min"), out, expect_success=False)
+check(code == 1 and "Boundary conditions/Dirichlet 1/Displacement" in log and "uu" in log and
+      open(f"{out}/output/parameters.prm").read() == kept and
+      sorted(os.listdir(f"{out}/output")) == names,
+      f"an undefined name in an expression: exit code {code}, the entry named, nothing written")
+os.remove(f"{out}/output/statistics.csv")
+os.mkdir(f"{out}/output/statistics.csv")
+code, log = sltest.run(executable, short, out, expect_success=False)
+check(code == 1 and "Output/Output directory" in log and "statistics.csv is a directory" in log,
+      f"statistics.csv taken by a directory: exit code {code}, the entry and the path named")
+code, log = sltest.run(executable, short.replace("set Output directory = output",
+                                                 f"set Output directory = {out}/input.prm/sub"),
+                       out, expect_success=False)
+check(code == 1 and "Output/Output directory" in log and "cannot be created" in log,
+      f"an output directory under a file: exit code {code}, the entry named")
+
 # the command line: each mistake is named and exits with 1
 for arguments, expected in ((["--print-parameters", "7"], "2 or 3"),
                             (["--print-parameters", "x"], "2 or 3"),

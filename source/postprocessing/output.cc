@@ -17,6 +17,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -322,6 +323,63 @@ namespace StabilizedLagrangian
       }
   }
 
+  namespace
+  {
+    /** Whether @p name is a file this program writes into an output directory. */
+    bool
+    is_run_output(const std::string &name)
+    {
+      const auto starts = [&](const char *prefix) { return name.rfind(prefix, 0) == 0; };
+      const auto ends   = [&](const char *suffix) {
+        const std::string s(suffix);
+        return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+      };
+      return (starts("solution") && (ends(".vtu") || ends(".pvtu") || ends(".pvd"))) ||
+             (starts("profile-") && ends(".csv")) || starts("cycle-") || starts("checkpoint") ||
+             name == "statistics.csv" || name == "iterations.csv" || name == "run_summary.csv" ||
+             name == "refinement_cycles.csv" || name == "parameters.prm" || ends(".tmp");
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::prepare_output_directory() const
+  {
+    // rank 0 checks and clears; every rank learns its verdict
+    std::string error;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      try
+        {
+          namespace fs        = std::filesystem;
+          const fs::path path = output_parameters.directory;
+          fs::create_directories(path);
+          // the files of an earlier run would mix with this one's (a longer
+          // run leaves later steps behind): the program owns them and removes them
+          for (const auto &entry : fs::directory_iterator(path))
+            {
+              const std::string name = entry.path().filename().string();
+              if (!is_run_output(name))
+                continue;
+              const bool owned_directory = name.rfind("cycle-", 0) == 0 ||
+                                           name.rfind("checkpoint", 0) == 0;
+              if (entry.is_directory() && !owned_directory)
+                throw std::runtime_error(entry.path().string() +
+                                         " is a directory, where the run writes a file");
+              fs::remove_all(entry.path());
+            }
+          SafeFiles::write_atomically((path / "statistics.csv").string(), "");
+          fs::remove(path / "statistics.csv");
+        }
+      catch (const std::exception &e)
+        {
+          error = "Output/Output directory = '" + output_parameters.directory +
+                  "': the directory cannot be created, cleared or written (" + e.what() + ").";
+        }
+    error = Utilities::MPI::broadcast(mpi_communicator, error, 0);
+    if (!error.empty())
+      throw InputError(error);
+  }
+
   template <int dim>
   void
   ContactProblem<dim>::write_pvd() const
@@ -338,6 +396,10 @@ namespace StabilizedLagrangian
   ContactProblem<2>::output_results(unsigned int, double);
   template void
   ContactProblem<3>::output_results(unsigned int, double);
+  template void
+  ContactProblem<2>::prepare_output_directory() const;
+  template void
+  ContactProblem<3>::prepare_output_directory() const;
   template void
   ContactProblem<2>::write_pvd() const;
   template void

@@ -29,10 +29,11 @@ namespace StabilizedLagrangian
     const bool        root            = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     const std::string final_directory = output_parameters.directory;
     run_directory                     = final_directory;
-    if (root)
-      std::filesystem::create_directories(final_directory);
-    MPI_Barrier(mpi_communicator);
+    // nothing is written before the input is known to be good: the mesh and
+    // the boundary names are checked by setup()
     setup();
+    if (!resume)
+      prepare_output_directory();
     geometry_loop_needed           = master_surface || !(obstacle->is_flat() && !finite_strain());
     const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
     if (root)

@@ -511,6 +511,13 @@ namespace StabilizedLagrangian
     // --- output.cc ---
     void
     output_results(const unsigned int step, const double time);
+    /**
+     * Create the output directory and remove what an earlier run wrote there
+     * (the files this program writes: solution, profiles, statistics, cycles,
+     * checkpoints), after the input was read; an error names the entry.
+     */
+    void
+    prepare_output_directory() const;
     /** Write solution.pvd from pvd_records, atomically (rank 0). */
     void
     write_pvd() const;
