@@ -184,6 +184,9 @@ cases = [
     ("body in two slots", base + "subsection Material 2\n  set Bodies = upper\nend\n"
      "subsection Material 3\n  set Bodies = upper\nend\n",
      ["Material 3/Bodies", "upper", "Material 2"]),
+    ("bad value in a slot", base + "subsection Material 2\n  set Bodies = upper\n"
+     "  subsection linear elastic\n    set Poisson's ratio = 0.7\n  end\nend\n",
+     ["Material 2/linear elastic/Poisson's ratio", "0.7"]),
 ]
 for name, text, words in cases:
     code, log = sltest.run(executable, text, os.path.join(workdir, name.replace(" ", "_")), expect_success=False)
