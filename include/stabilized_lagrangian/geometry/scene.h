@@ -64,7 +64,14 @@ namespace StabilizedLagrangian
     declare_parameters(ParameterHandler &prm)
     {
       Registry<dim>::declare_parameters_in(
-          prm, "Geometry", "block", "Mesh of the deformable body.");
+          prm,
+          "Geometry",
+          "block",
+          "Mesh of the deformable body. Boundary ids of the built-in geometries: block: 0 "
+          "and 1 the faces at x min and x max, 2 the bottom (the contact surface), 3 the top, "
+          "4 and 5 the faces at y min and y max (3D); half ball: 2 the curved faces within "
+          "`Contact zone radius` of the lowest point, 0 the rest of the curved side, 3 the "
+          "flat side. gmsh: the file's physical groups, by name or id.");
     }
 
     /** @brief Build the geometry chosen in the `Geometry` subsection. */
