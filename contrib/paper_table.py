@@ -58,14 +58,18 @@ for name, title in scenes:
             continue
         with open(os.path.join(workdir, "output", "run_summary.csv")) as f:
             summary = next(csv.DictReader(f))
+        # the Newton iterations of attempts that failed and were cut (not in the table below)
+        failed = int(summary.get("failed_attempt_newton_iterations") or 0)
         lines.append(f"{summary['load_steps']} load steps, {summary['displacement_dofs']} displacement + "
                      f"{summary['multiplier_dofs']} multiplier DoFs, {summary['newton_iterations']} Newton "
-                     f"iterations (mean {float(summary['mean_newton_iterations_per_step']):.1f} per step), "
-                     f"{float(summary['wall_time_s']):.1f} s.")
+                     f"iterations (mean {float(summary['mean_newton_iterations_per_step']):.1f} per step)"
+                     + (f" and {failed} more in failed (cut) attempts" if failed else "")
+                     + f", {float(summary['wall_time_s']):.1f} s.")
         lines.append("")
         lines.extend(iteration_table.markdown_table(os.path.join(workdir, "output")))
         lines.append("")
-        print(f"{name} ({label}): {summary['newton_iterations']} Newton iterations, "
+        print(f"{name} ({label}): {summary['newton_iterations']} Newton iterations"
+              + (f" (+{failed} in cut attempts)" if failed else "") + ", "
               f"{float(summary['wall_time_s']):.1f} s")
 with open(args.output, "w") as f:
     f.write("\n".join(lines) + "\n")
