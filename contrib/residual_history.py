@@ -12,7 +12,9 @@ those of its failed (cut) attempts included. The two runs may cut different
 steps, so the step is matched by pseudo-time: the scaled run shows its steps
 (and their failed attempts) that overlap the worst step's time interval. For
 each inner loop the table lists the residual in N and the largest scaled block
-at every iterate, and where each criterion stopped. OUTPUT is overwritten."""
+at every iterate, and where each criterion stopped. The table is written as the
+section of OUTPUT between its begin/end comments (replaced if OUTPUT has it,
+appended otherwise), so the file can hold other sections."""
 import argparse
 import os
 import re
@@ -25,6 +27,7 @@ CRITERIA = {
 }
 ITERATE = re.compile(r"\s+Newton (\d+): residual (\S+) N; scaled: force (\S+), gap (\S+), slip (\S+)")
 STEP = re.compile(r"step\s+(\d+)\s+t =\s+(\S+)")
+BEGIN, END = "<!-- begin residual_history -->", "<!-- end residual_history -->"
 
 
 class Attempt:
@@ -99,7 +102,7 @@ def main():
                 for c in CRITERIA}
     worst = max(runs["absolute"][0], key=step_iterations)
     _, t_start, t_end, _ = worst
-    lines = [f"# Newton residual history: {os.path.basename(args.scene)}, t = {t_start:g} … {t_end:g}",
+    lines = [BEGIN, f"## Newton residual history: {os.path.basename(args.scene)}, t = {t_start:g} … {t_end:g}",
              "",
              f"Written by `contrib/residual_history.py --executable {args.executable} "
              f"--scene {args.scene} --output {args.output}`.",
@@ -135,7 +138,7 @@ def main():
     lines.append("")
     for criterion in CRITERIA:
         steps = [s for s in runs[criterion][0] if s[1] < t_end - 1e-12 and s[2] > t_start + 1e-12]
-        lines += [f"## `Residual = {criterion}`", ""]
+        lines += [f"### `Residual = {criterion}`", ""]
         if not steps:
             lines += ["No step of this run overlaps that interval (the run stopped before it).", ""]
             continue
@@ -159,9 +162,20 @@ def main():
                         lines.append(f"| {number} | {label} | {k + 1} | {i} | {mark}{residual:.3e}{mark} | "
                                      f"{mark}{scaled:.3e}{mark} |")
         lines.append("")
+    lines.append(END)
+    text = ""
+    if os.path.exists(args.output):
+        with open(args.output) as f:
+            text = f.read()
+    block = "\n".join(lines) + "\n"
+    pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END) + "\n?", re.S)
+    if pattern.search(text):
+        text = pattern.sub(lambda _: block, text)
+    else:
+        text = text.rstrip("\n") + ("\n\n" if text else "") + block
     with open(args.output, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines[:10]))
+        f.write(text)
+    print("\n".join(lines[1:11]))
 
 
 if __name__ == "__main__":
