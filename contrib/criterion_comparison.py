@@ -30,7 +30,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from robustness_map import GENERALIZED_NEWTON, nested_set  # noqa: E402
+from robustness_map import GENERALIZED_NEWTON, nested_set, write_section  # noqa: E402
 
 root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 SCENES = [("patin_elastic", "elastic patin"), ("patin_neo_hookean", "neo-Hookean patin"),
@@ -130,18 +130,7 @@ def main():
                "| scene | algorithm | before: mean / step | before: steps | after: mean / step | after: steps "
                "| after: failed | new binary, absolute 1e-6: mean / step | steps | failed |",
                "|---|---|---|---|---|---|---|---|---|---|"] + rows + ["", END]
-    text = ""
-    if os.path.exists(args.output):
-        with open(args.output) as f:
-            text = f.read()
-    block = "\n".join(section) + "\n"
-    pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END) + "\n?", re.S)
-    if pattern.search(text):
-        text = pattern.sub(lambda _: block, text)
-    else:
-        text = text.rstrip("\n") + ("\n\n" if text else "") + block
-    with open(args.output, "w") as f:
-        f.write(text)
+    write_section(args.output, BEGIN, END, "\n".join(section) + "\n")
     print(f"wrote the section of {args.output}")
 
 

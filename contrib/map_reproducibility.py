@@ -30,7 +30,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from robustness_map import build_scene, log_grid, sweep, write_csv  # noqa: E402
+from robustness_map import build_scene, log_grid, sweep, write_csv, write_section  # noqa: E402
 
 MAP_RN = (1e1, 1e13, 9)  # the grid of contrib/robustness_study.py --part maps
 MAP_RT = (1e-4, 1e6, 11)
@@ -140,18 +140,7 @@ def main():
                "assemblies, per step) or of its iterations.csv (every column but the residual) does. Per-case "
                f"directories: `{args.workdir}/<algorithm>_<variant>/rnII_rtJJ`.", ""] + lines + [
                f"**{total_differ} cell(s) differ** over the {len(algorithms)} × 2 comparisons.", "", END]
-    text = ""
-    if os.path.exists(args.output):
-        with open(args.output) as f:
-            text = f.read()
-    block = "\n".join(section) + "\n"
-    pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END) + "\n?", re.S)
-    if pattern.search(text):
-        text = pattern.sub(lambda _: block, text)
-    else:
-        text = text.rstrip("\n") + ("\n\n" if text else "") + block
-    with open(args.output, "w") as f:
-        f.write(text)
+    write_section(args.output, BEGIN, END, "\n".join(section) + "\n")
     print("\n".join(lines))
     print(f"{total_differ} cell(s) differ; wrote the section of {args.output}")
     return 1 if total_differ else 0

@@ -19,7 +19,11 @@ import argparse
 import os
 import re
 import subprocess
+import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from robustness_map import write_section  # noqa: E402
 
 CRITERIA = {
     "scaled": "set Residual = scaled\n    set Tolerance = 1e-8",
@@ -163,18 +167,7 @@ def main():
                                      f"{mark}{scaled:.3e}{mark} |")
         lines.append("")
     lines.append(END)
-    text = ""
-    if os.path.exists(args.output):
-        with open(args.output) as f:
-            text = f.read()
-    block = "\n".join(lines) + "\n"
-    pattern = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END) + "\n?", re.S)
-    if pattern.search(text):
-        text = pattern.sub(lambda _: block, text)
-    else:
-        text = text.rstrip("\n") + ("\n\n" if text else "") + block
-    with open(args.output, "w") as f:
-        f.write(text)
+    write_section(args.output, BEGIN, END, "\n".join(lines) + "\n")
     print("\n".join(lines[1:11]))
 
 

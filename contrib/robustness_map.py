@@ -56,6 +56,23 @@ OUTCOMES = ["converged", "diverged", "error", "timeout"]
 OUTPUT_SECTION = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
 
 
+def write_section(path, begin, end, block):
+    """Replace the part of the Markdown file `path` between the markers `begin` and `end`
+    (included) by `block`, which starts with `begin` and ends with `end`; append it when the
+    file has no such part, so that several scripts can write one file."""
+    text = ""
+    if os.path.exists(path):
+        with open(path) as f:
+            text = f.read()
+    pattern = re.compile(re.escape(begin) + ".*?" + re.escape(end) + "\n?", re.S)
+    if pattern.search(text):
+        text = pattern.sub(lambda _: block, text)
+    else:
+        text = text.rstrip("\n") + ("\n\n" if text else "") + block
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def nested_set(path, value):
     """'Section/Sub/Entry', value -> the parameter file text setting it in nested subsections."""
     *sections, entry = path.split("/")
