@@ -2,6 +2,7 @@
 """Bad input: each case exits non-zero with one clear message naming the entry
 and what is allowed, and writes no NaN into any output file."""
 import os
+import shutil
 import subprocess
 import sys
 import sltest
@@ -85,6 +86,7 @@ check(result.returncode != 0 and "does-not-exist.prm" in result.stderr,
 # created, is named with the entry
 short = base.replace("set Global refinements = 4", "set Global refinements = 2")
 out = f"{workdir}/reused_directory"
+shutil.rmtree(out, ignore_errors=True)  # a rerun starts from an empty directory
 sltest.run(executable, short, out)
 sltest.run(executable, short.replace("set Number of load steps = 10", "set Number of load steps = 4"),
            out)

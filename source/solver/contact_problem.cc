@@ -69,6 +69,19 @@ namespace StabilizedLagrangian
     setup_after_refinement();
   }
 
+  namespace
+  {
+    /**
+     * The contact pressure, as a fraction of the largest Young's modulus, below
+     * which the friction threshold sees zero. A point that was open at the
+     * previous Newton iterate gets λ_n = 0 up to round-off (about 1e-16 of the
+     * largest pressure), and if it closes, s = μ λ_n > 0 or not — friction
+     * active (χ_f = 1, with the coupling ∂T/∂λ_n = −μ P_B(ĝ)) or not — would be
+     * decided by the rounding, that is by the BLAS kernel and thread count.
+     */
+    constexpr double negligible_pressure_fraction = 1e-12;
+  } // namespace
+
   template <int dim>
   void
   ContactProblem<dim>::setup_after_refinement()
@@ -81,8 +94,9 @@ namespace StabilizedLagrangian
           E_max = std::max(E_max, material_of(cell).youngs_modulus());
           h_min = std::min(h_min, cell->minimum_vertex_distance());
         }
-    nodal_stiffness = Utilities::MPI::max(E_max, mpi_communicator) *
-                      std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
+    E_max               = Utilities::MPI::max(E_max, mpi_communicator);
+    nodal_stiffness     = E_max * std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
+    negligible_pressure = negligible_pressure_fraction * E_max;
     setup_dofs();
     setup_contact_points();
     material_history.initialize(
@@ -1290,7 +1304,7 @@ namespace StabilizedLagrangian
         contact_parameters.r_n,
         contact_parameters.r_t,
         folded(solver_parameters.friction_method)
-            ? friction_law->threshold_derivative(k.contact_pressure)
+            ? friction_law->threshold_derivative(threshold_pressure(k.contact_pressure))
             : 0.);
   }
 
@@ -1304,10 +1318,17 @@ namespace StabilizedLagrangian
       state.pairing = obstacle->project(k.position);
     follow_master(state.pairing, k);
     if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
-      state.friction_threshold = friction_law->threshold(k.contact_pressure);
+      state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
     if (folded(solver_parameters.status_method))
       state.in_contact = Contact::is_in_contact(Contact::augmented_pressure(
           k.contact_pressure, state.pairing.gap(k.position), contact_parameters.r_n));
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::threshold_pressure(const double contact_pressure) const
+  {
+    return contact_pressure > negligible_pressure ? contact_pressure : 0.;
   }
 
   template <int dim>

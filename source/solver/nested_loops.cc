@@ -590,7 +590,7 @@ namespace StabilizedLagrangian
     TimerOutput::Scope scope(timer, "contact search");
     double             max_change = 0., max_threshold = 0.;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const double s           = friction_law->threshold(k.contact_pressure);
+      const double s           = friction_law->threshold(threshold_pressure(k.contact_pressure));
       max_change               = std::max(max_change, std::abs(s - state.friction_threshold));
       max_threshold            = std::max(max_threshold, s);
       state.friction_threshold = s;

@@ -501,6 +501,9 @@ namespace StabilizedLagrangian
      */
     void
     refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
+    double
+    threshold_pressure(double contact_pressure) const;
     /** Whether @p method folds its loop into the generalized Newton. */
     static bool
     folded(const Parameters::LoopMethod method)
@@ -596,6 +599,11 @@ namespace StabilizedLagrangian
      * (N/mm; per mm of thickness in 2D), for the floor of the force scale
      */
     double nodal_stiffness = 0.;
+    /**
+     * 1e-12 E_max (MPa): a contact pressure below it is round-off, and the
+     * friction threshold sees zero there (threshold_pressure())
+     */
+    double negligible_pressure = 0.;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     bool                          dirichlet_predictor = false;
