@@ -7,10 +7,13 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -188,13 +191,68 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    BoundaryFunction<dim>::BoundaryFunction(const std::string &entry)
+        : Functions::ParsedFunction<dim>(dim)
+        , entry(entry)
+    {
+    }
+
+    template <int dim>
+    void
+    BoundaryFunction<dim>::vector_value(const Point<dim> &point, Vector<double> &values) const
+    {
+      Functions::ParsedFunction<dim>::vector_value(point, values);
+      for (unsigned int c = 0; c < values.size(); ++c)
+        note(point, values[c], c);
+    }
+
+    template <int dim>
+    double
+    BoundaryFunction<dim>::value(const Point<dim> &point, const unsigned int component) const
+    {
+      const double result = Functions::ParsedFunction<dim>::value(point, component);
+      note(point, result, component);
+      return result;
+    }
+
+    template <int dim>
+    void
+    BoundaryFunction<dim>::note(const Point<dim>  &point,
+                                const double       value,
+                                const unsigned int component) const
+    {
+      if (std::isfinite(value) || !failure.empty())
+        return;
+      std::ostringstream message;
+      message << entry << ": the function gives " << value << " in component " << component + 1
+              << " at t = " << this->get_time() << ", point (" << point
+              << "); boundary data must be finite there.";
+      failure = message.str();
+    }
+
+    template <int dim>
+    void
+    BoundaryFunction<dim>::check_finite(const MPI_Comm communicator) const
+    {
+      if (Utilities::MPI::max(static_cast<int>(!failure.empty()), communicator) == 0)
+        return;
+      std::string first;
+      for (const auto &message : Utilities::MPI::all_gather(communicator, failure))
+        if (first.empty())
+          first = message;
+      failure.clear();
+      throw InputError(first);
+    }
+
+    template <int dim>
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
     {
       dirichlet.clear();
       neumann.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
-        auto function = std::make_shared<Functions::ParsedFunction<dim>>(dim);
+        auto function =
+            std::make_shared<BoundaryFunction<dim>>("Boundary conditions/" + slot + "/" + name);
         prm.enter_subsection(name);
         const std::string expected = dim == 2 ? "x,y,t" : "x,y,z,t";
         if (Utilities::split_string_list(prm.get("Variable names")).size() != dim + 1)
@@ -202,6 +260,18 @@ namespace StabilizedLagrangian
                            prm.get("Variable names") + "': a " + std::to_string(dim) +
                            "D function needs " + std::to_string(dim + 1) +
                            " variable names, the coordinates then time, e.g. '" + expected + "'.");
+        const std::vector<std::string> variables =
+            Utilities::split_string_list(prm.get("Variable names"));
+        for (const auto &constant : Utilities::split_string_list(prm.get("Function constants")))
+          {
+            const std::string constant_name =
+                Utilities::trim(constant.substr(0, constant.find('=')));
+            if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
+              throw InputError("Boundary conditions/" + slot + "/" + name +
+                               "/Function constants: '" + constant_name +
+                               "' is also a variable name (" + prm.get("Variable names") +
+                               "); give the constant another name.");
+          }
         try
           {
             function->parse_parameters(prm);
@@ -218,6 +288,14 @@ namespace StabilizedLagrangian
                              ": the function could not be parsed (" + std::to_string(dim) +
                              " components separated by ';', variables x, y" +
                              (dim == 3 ? ", z" : "") + ", t). " + message.str());
+          }
+        catch (...)
+          {
+            // the expression parser's own exceptions are not std::exceptions
+            throw InputError("Boundary conditions/" + slot + "/" + name +
+                             ": the function could not be parsed (" + std::to_string(dim) +
+                             " components separated by ';', variables x, y" +
+                             (dim == 3 ? ", z" : "") + ", t, constants 'name=value, ...').");
           }
         prm.leave_subsection();
         return function;
@@ -551,15 +629,139 @@ namespace StabilizedLagrangian
 
     namespace
     {
-      std::string
-      read_file(const std::string &filename)
+      /** A parameter file larger than this is not one (a device, a log, a mesh). */
+      constexpr std::uintmax_t max_parameter_file_size = std::uintmax_t(16) << 20;
+      /** Deeper include chains than this are refused (a cycle is caught before). */
+      constexpr unsigned int max_include_depth = 32;
+
+      /** A parameter file with its includes expanded, and where each line came from. */
+      struct ExpandedFile
       {
-        std::ifstream file(filename);
+        std::string                                   text;
+        std::vector<std::pair<std::string, unsigned>> origin; // (file, line) of each line
+      };
+
+      /**
+       * The content of the text file @p filename: refused with a message when it
+       * is missing, a directory, a device, FIFO or socket (reading would block or
+       * never end), larger than max_parameter_file_size, or binary.
+       */
+      std::string
+      read_text_file(const std::string &filename, const std::string &what)
+      {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const auto      status = fs::status(filename, ec);
+        if (!fs::exists(status))
+          throw InputError(what + " '" + filename + "' does not exist.");
+        if (fs::is_directory(status))
+          throw InputError(what + " '" + filename + "' is a directory, not a parameter file.");
+        if (!fs::is_regular_file(status))
+          throw InputError(what + " '" + filename +
+                           "' is not a regular file (a device, FIFO or socket): give a "
+                           "parameter file.");
+        if (fs::file_size(filename, ec) > max_parameter_file_size)
+          throw InputError(what + " '" + filename + "' is larger than " +
+                           std::to_string(max_parameter_file_size >> 20) +
+                           " MiB: not a parameter file.");
+        std::ifstream file(filename, std::ios::binary);
         if (!file)
-          throw InputError("Cannot open the parameter file '" + filename + "'.");
+          throw InputError("Cannot open " + what + " '" + filename + "' (permissions?).");
         std::stringstream content;
         content << file.rdbuf();
-        return content.str();
+        const std::string text = content.str();
+        if (text.find('\0') != std::string::npos)
+          throw InputError(what + " '" + filename +
+                           "' contains NUL bytes: a binary file, not a parameter file.");
+        return text;
+      }
+
+      /** The file named by an `include` (or `INCLUDE`) line, or nothing. */
+      std::optional<std::string>
+      included_file(const std::string &line)
+      {
+        std::string statement = line.substr(0, line.find('#'));
+        statement             = Utilities::trim(statement);
+        for (const std::string keyword : {"include", "INCLUDE"})
+          if (statement.rfind(keyword, 0) == 0 &&
+              (statement.size() == keyword.size() ||
+               std::isspace(static_cast<unsigned char>(statement[keyword.size()]))))
+            return Utilities::trim(statement.substr(keyword.size()));
+        return std::nullopt;
+      }
+
+      /**
+       * Expand the `include` lines of @p filename recursively (each included
+       * file as given if it exists, else beside the including file), refusing a
+       * file that includes itself, directly or not, and chains deeper than
+       * max_include_depth.
+       */
+      void
+      expand(const std::string &filename, std::vector<std::string> &chain, ExpandedFile &out)
+      {
+        namespace fs           = std::filesystem;
+        const std::string what = chain.empty() ? "The parameter file" : "The included file";
+        const std::string text = read_text_file(filename, what);
+        std::error_code   ec;
+        const std::string canonical = fs::weakly_canonical(filename, ec).string();
+        if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
+          {
+            std::string cycle;
+            for (const auto &file : chain)
+              cycle += file + " -> ";
+            throw InputError("The parameter file includes itself: " + cycle + canonical + ".");
+          }
+        if (chain.size() >= max_include_depth)
+          throw InputError("More than " + std::to_string(max_include_depth) +
+                           " nested include statements, at '" + filename + "'.");
+        chain.push_back(canonical);
+        std::istringstream lines(text);
+        std::string        line;
+        for (unsigned int number = 1; std::getline(lines, line); ++number)
+          if (const auto include = included_file(line))
+            {
+              if (include->empty())
+                throw InputError("'" + filename + "' line " + std::to_string(number) +
+                                 ": an include statement without a file name.");
+              std::string path = *include;
+              if (!fs::path(path).is_absolute() && !fs::exists(path))
+                path = (fs::path(filename).parent_path() / path).string();
+              expand(path, chain, out);
+            }
+          else
+            {
+              out.text += line + "\n";
+              out.origin.emplace_back(filename, number);
+            }
+        chain.pop_back();
+      }
+
+      ExpandedFile
+      read_file(const std::string &filename)
+      {
+        ExpandedFile             result;
+        std::vector<std::string> chain;
+        expand(filename, chain, result);
+        return result;
+      }
+
+      /**
+       * ParameterHandler's message with "Line <N> of file <input string>"
+       * replaced by the file and line the expanded line N came from.
+       */
+      std::string
+      locate(const std::string &message, const ExpandedFile &file)
+      {
+        static const std::regex where("Line <([0-9]+)> of file <[^>]*>");
+        std::smatch             match;
+        if (!std::regex_search(message, match, where))
+          return message;
+        const unsigned long line = std::stoul(match[1]);
+        if (line < 1 || line > file.origin.size())
+          return message;
+        const auto &[name, number] = file.origin[line - 1];
+        return match.prefix().str() + "'" + name + "' line " + std::to_string(number) +
+               match.suffix().str();
       }
     } // namespace
 
@@ -584,10 +786,10 @@ namespace StabilizedLagrangian
         parameter_file_directory = std::filesystem::path(text).parent_path().string();
       if (parameter_file_directory.empty())
         parameter_file_directory = ".";
-      const std::string content = is_file ? read_file(text) : text;
+      const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
       try
         {
-          prm.parse_input_from_string(content);
+          prm.parse_input_from_string(content.text);
         }
       catch (const ExceptionBase &e)
         {
@@ -595,7 +797,7 @@ namespace StabilizedLagrangian
           e.print_info(message);
           throw InputError("Error in the parameter file " +
                            (is_file ? "'" + text + "'" : std::string("(built-in)")) + ":\n" +
-                           message.str());
+                           locate(message.str(), content));
         }
     }
 
@@ -604,20 +806,27 @@ namespace StabilizedLagrangian
     {
       ParameterHandler prm;
       prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
-      const std::string content = is_file ? read_file(text) : text;
+      const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
+      if (is_file && !std::regex_search(content.text, std::regex("(^|\n)[ \t]*set[ \t]")))
+        throw InputError("The parameter file '" + text +
+                         "' sets no parameter (an empty file?). Run the program without a "
+                         "file for the built-in scene.");
       try
         {
-          prm.parse_input_from_string(content, "", true);
+          prm.parse_input_from_string(content.text, "", true);
         }
       catch (const ExceptionBase &e)
         {
           std::ostringstream message;
           e.print_info(message);
-          throw InputError("Error in the parameter file: " + message.str());
+          throw InputError("Error in the parameter file '" + text +
+                           "': " + locate(message.str(), content));
         }
       return prm.get_integer("Dimension");
     }
 
+    template class BoundaryFunction<2>;
+    template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;
     template struct BoundaryConditions<3>;
     template void

@@ -136,4 +136,18 @@ for root, _, files in os.walk(workdir):
                 if "nan" in f.read().lower():
                     nan_files.append(name)
 check(not nan_files, f"no NaN in any output file {nan_files}")
+# input that runs but cannot be what the user meant: a warning in the log
+# (exit 0), and none for the scene as shipped
+for name, text, expect in (
+        ("obstacle normal into the body", short.replace("set Normal = 0, 1", "set Normal = 0, -1"),
+         "lie behind the obstacle's surface"),
+        ("contact surface on a side face", short.replace("set Contact boundary ids = 2",
+                                                         "set Contact boundary ids = 0"),
+         "contact points was in contact in any load step"),
+        ("the scene as shipped", short, None)):
+    code, log = sltest.run(executable, text, f"{workdir}/warning", expect_success=False)
+    warned = "WARNING" in log and (expect is None or expect in log)
+    check(code == 0 and (warned if expect else "WARNING" not in log),
+          f"{name}: exit code {code}, " + ("warned" if "WARNING" in log else "no warning"))
+
 check.finish()

@@ -63,13 +63,47 @@ namespace StabilizedLagrangian
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * @brief A function of the `Boundary conditions` that notes the first
+     * non-finite value it returns (0/0, the square root of a negative number,
+     * a NaN constant), with its entry, time and point, so that the run stops
+     * with that message instead of carrying NaN into the solution and output.
+     */
+    template <int dim> class BoundaryFunction : public Functions::ParsedFunction<dim>
+    {
+    public:
+      /** @param entry the subsection path named in the message, e.g. `Boundary conditions/Dirichlet
+       * 1/Displacement` */
+      explicit BoundaryFunction(const std::string &entry);
+
+      void
+      vector_value(const Point<dim> &point, Vector<double> &values) const override;
+      double
+      value(const Point<dim> &point, const unsigned int component = 0) const override;
+
+      /**
+       * Collective: if this function returned a non-finite value on any rank
+       * since the last call, throw InputError naming the entry, the time and the
+       * point on every rank.
+       */
+      void
+      check_finite(const MPI_Comm communicator) const;
+
+    private:
+      void
+      note(const Point<dim> &point, const double value, const unsigned int component) const;
+
+      const std::string   entry;
+      mutable std::string failure;
+    };
+
     /** @brief A prescribed displacement on some components of a boundary. */
     template <int dim> struct DirichletCondition
     {
       types::boundary_id boundary_id;
       std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       ComponentMask components;
-      std::shared_ptr<Functions::ParsedFunction<dim>> displacement;
+      std::shared_ptr<BoundaryFunction<dim>> displacement;
     };
 
     /** @brief A prescribed traction (MPa) on a boundary. */
@@ -77,7 +111,7 @@ namespace StabilizedLagrangian
     {
       types::boundary_id boundary_id;
       std::string boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
-      std::shared_ptr<Functions::ParsedFunction<dim>> traction;
+      std::shared_ptr<BoundaryFunction<dim>> traction;
     };
 
     /** @brief `Boundary conditions` subsection: Dirichlet and Neumann slots. */

@@ -10,9 +10,16 @@
 #include <gmsh.h>
 
 #include <filesystem>
+#include <chrono>
+#include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <thread>
 
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace StabilizedLagrangian
@@ -21,51 +28,378 @@ namespace StabilizedLagrangian
   {
     namespace
     {
-      /** Physical groups of a .msh file: (dimension, name) → tag, from $PhysicalNames. */
-      std::map<std::pair<int, std::string>, int>
-      read_physical_names(const std::string &msh_file)
-      {
-        std::map<std::pair<int, std::string>, int> groups;
-        std::ifstream                              in(msh_file);
-        std::string                                line;
-        while (std::getline(in, line))
-          if (Utilities::trim(line) == "$PhysicalNames")
-            {
-              unsigned int n = 0;
-              in >> n;
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  int dimension = 0, tag = 0;
-                  in >> dimension >> tag;
-                  std::getline(in, line);
-                  const auto first = line.find('"'), last = line.rfind('"');
-                  if (first != std::string::npos && last > first)
-                    groups[{dimension, line.substr(first + 1, last - first - 1)}] = tag;
-                }
-              break;
-            }
-        return groups;
-      }
+      /** Number of nodes of the Gmsh element types a mesh of this program may hold. */
+      const std::map<int, unsigned int> element_nodes = {
+          {1, 2}, {2, 3}, {3, 4}, {4, 4}, {5, 8}, {6, 6}, {7, 5}, {15, 1}};
 
-      /** Mesh a .geo file with the Gmsh library into a .msh file (format 2.2). */
-      void
-      mesh_geo_file(const std::string &geo_file, const std::string &msh_file, const int dim)
+      /**
+       * @brief An ASCII .msh file (format 2 or 4) checked before GridIn reads it:
+       * GridIn trusts the counts and references of the file, and a truncated,
+       * binary or inconsistent file makes it read past the end, abort or accept
+       * garbage. Every error names the file, the line and what is allowed.
+       */
+      class MshScanner
       {
-        gmsh::initialize();
-        gmsh::option::setNumber("General.Terminal", 0);
-        try
+      public:
+        explicit MshScanner(const std::string &file)
+            : file(file)
+        {
+          std::ifstream in(file, std::ios::binary);
+          if (!in)
+            fail(0, "cannot be opened");
+          std::string line;
+          while (std::getline(in, line))
+            {
+              if (line.find('\0') != std::string::npos)
+                fail(lines.size() + 1,
+                     "holds binary data; write the mesh as ASCII (Gmsh option "
+                     "Mesh.Binary = 0)");
+              lines.push_back(Utilities::trim(line));
+            }
+          check_sections();
+          const unsigned int format = section("$MeshFormat", true);
+          std::istringstream header(line_at(format + 1));
+          double             version   = 0.;
+          int                file_type = -1;
+          if (!(header >> version >> file_type))
+            fail(format + 2, "a $MeshFormat line must read 'version file-type data-size'");
+          if (!((version >= 2. && version < 3.) || (version >= 4. && version < 5.)))
+            fail(
+                format + 2,
+                "format version " + line_at(format + 1).substr(0, line_at(format + 1).find(' ')) +
+                    " is not supported; write format 2.2 or 4.1 (Gmsh option Mesh.MshFileVersion)");
+          if (file_type != 0)
+            fail(format + 2,
+                 "is a binary .msh file; write it as ASCII (Gmsh option Mesh.Binary = 0)");
+          v4 = version >= 4.;
+          read_physical_names();
+          read_nodes();
+          read_elements();
+        }
+
+        /** (dimension, name) → tag of the physical groups. */
+        std::map<std::pair<int, std::string>, int> physical_groups;
+
+      private:
+        [[noreturn]] void
+        fail(const std::size_t line, const std::string &what) const
+        {
+          throw InputError("Geometry/gmsh/Mesh file: '" + file + "'" +
+                           (line > 0 ? " line " + std::to_string(line) : std::string()) + ": " +
+                           what + ".");
+        }
+
+        const std::string &
+        line_at(const std::size_t index) const
+        {
+          if (index >= lines.size())
+            fail(lines.size(), "the file ends early (truncated?)");
+          return lines[index];
+        }
+
+        /** Every $Section is closed by its $EndSection before the next one opens. */
+        void
+        check_sections() const
+        {
+          std::string open;
+          std::size_t opened = 0;
+          for (std::size_t i = 0; i < lines.size(); ++i)
+            if (!lines[i].empty() && lines[i][0] == '$')
+              {
+                if (lines[i].rfind("$End", 0) == 0)
+                  {
+                    if (lines[i] != "$End" + open.substr(1))
+                      fail(i + 1, lines[i] + " closes no open section");
+                    open.clear();
+                  }
+                else if (!open.empty())
+                  fail(opened + 1,
+                       "section " + open + " is not closed by $End" + open.substr(1) +
+                           " (truncated or edited file?)");
+                else
+                  open = lines[i], opened = i;
+              }
+          if (!open.empty())
+            fail(opened + 1,
+                 "section " + open + " is not closed by $End" + open.substr(1) +
+                     " (truncated file?)");
+          if (lines.empty())
+            fail(0, "is empty");
+        }
+
+        /** Index of the line "$name", or lines.size() when optional and absent. */
+        std::size_t
+        section(const std::string &name, const bool required) const
+        {
+          for (std::size_t i = 0; i < lines.size(); ++i)
+            if (lines[i] == name)
+              return i;
+          if (required)
+            fail(0, "has no " + name + " section (not a Gmsh mesh?)");
+          return lines.size();
+        }
+
+        /** The integers or reals of line @p index, exactly @p n of them if n > 0. */
+        template <typename T>
+        std::vector<T>
+        numbers(const std::size_t index, const std::size_t at_least, const std::string &what) const
+        {
+          std::istringstream in(line_at(index));
+          std::vector<T>     result;
+          T                  value;
+          while (in >> value)
+            result.push_back(value);
+          in.clear();
+          std::string rest;
+          if (in >> rest || result.size() < at_least)
+            fail(index + 1, "expected " + what + ", got '" + lines[index] + "'");
+          return result;
+        }
+
+        std::size_t
+        count(const std::size_t index, const std::string &what) const
+        {
+          const auto values = numbers<long long>(index, 1, what);
+          if (values[0] < 0 || values[0] > static_cast<long long>(lines.size()))
+            fail(index + 1,
+                 what + " " + std::to_string(values[0]) + " is negative or larger than the file");
+          return static_cast<std::size_t>(values[0]);
+        }
+
+        void
+        expect_end(const std::size_t  index,
+                   const std::string &name,
+                   const std::string &counted) const
+        {
+          if (line_at(index) != name)
+            fail(index + 1,
+                 "expected " + name + " after the " + counted +
+                     " announced by the section's count, got '" + lines[index] + "'");
+        }
+
+        void
+        read_physical_names()
+        {
+          const std::size_t start = section("$PhysicalNames", false);
+          if (start == lines.size())
+            return;
+          const std::size_t n = count(start + 1, "number of physical names");
+          for (std::size_t i = start + 2; i < start + 2 + n; ++i)
+            {
+              std::istringstream in(line_at(i));
+              int                dimension = -1, tag = -1;
+              const auto         first = lines[i].find('"'), last = lines[i].rfind('"');
+              if (!(in >> dimension >> tag) || dimension < 0 || dimension > 3 ||
+                  first == std::string::npos || last <= first)
+                fail(i + 1,
+                     "a physical name reads 'dimension tag \"name\"', got '" + lines[i] + "'");
+              physical_groups[{dimension, lines[i].substr(first + 1, last - first - 1)}] = tag;
+            }
+          expect_end(start + 2 + n, "$EndPhysicalNames", "physical names");
+        }
+
+        void
+        add_node(const std::size_t index, const long long tag, const std::vector<double> &xyz)
+        {
+          for (const double x : xyz)
+            if (!std::isfinite(x))
+              fail(index + 1, "node " + std::to_string(tag) + " has a non-finite coordinate");
+          if (!node_tags.insert(tag).second)
+            fail(index + 1, "node " + std::to_string(tag) + " is defined twice");
+        }
+
+        void
+        read_nodes()
+        {
+          const std::size_t start = section("$Nodes", true);
+          std::size_t       i     = start + 1;
+          if (!v4)
+            {
+              const std::size_t n = count(i++, "number of nodes");
+              for (std::size_t k = 0; k < n; ++k, ++i)
+                {
+                  const auto v = numbers<double>(i, 4, "'tag x y z'");
+                  add_node(i, static_cast<long long>(v[0]), {v[1], v[2], v[3]});
+                }
+            }
+          else
+            {
+              const auto  header = numbers<long long>(i++, 4, "'blocks nodes min-tag max-tag'");
+              std::size_t total  = 0;
+              for (long long block = 0; block < header[0]; ++block)
+                {
+                  const auto b = numbers<long long>(i++, 4, "'dimension entity parametric nodes'");
+                  if (b[3] < 0 || b[3] > static_cast<long long>(lines.size()))
+                    fail(i,
+                         "node block of " + std::to_string(b[3]) + " nodes: larger than the file");
+                  const std::size_t n    = static_cast<std::size_t>(b[3]);
+                  const std::size_t tags = i;
+                  for (std::size_t k = 0; k < n; ++k)
+                    {
+                      const auto v = numbers<double>(tags + n + k, 3, "'x y z'");
+                      add_node(tags + n + k,
+                               numbers<long long>(tags + k, 1, "a node tag")[0],
+                               {v[0], v[1], v[2]});
+                    }
+                  i = tags + 2 * n;
+                  total += n;
+                }
+              if (static_cast<long long>(total) != header[1])
+                fail(start + 2,
+                     "announces " + std::to_string(header[1]) + " nodes, the blocks hold " +
+                         std::to_string(total));
+            }
+          expect_end(i, "$EndNodes", "nodes");
+        }
+
+        void
+        add_element(const std::size_t index, const int type, const std::vector<long long> &nodes)
+        {
+          const auto known = element_nodes.find(type);
+          if (known == element_nodes.end())
+            fail(index + 1,
+                 "element type " + std::to_string(type) +
+                     " is not supported: lines (1), quadrilaterals (3), hexahedra (5) "
+                     "and points (15), i.e. first-order elements");
+          if (nodes.size() != known->second)
+            fail(index + 1,
+                 "an element of type " + std::to_string(type) + " has " +
+                     std::to_string(known->second) + " nodes, this one " +
+                     std::to_string(nodes.size()));
+          for (const long long node : nodes)
+            if (node_tags.count(node) == 0)
+              fail(index + 1,
+                   "the element refers to node " + std::to_string(node) +
+                       ", which $Nodes does not define");
+        }
+
+        void
+        read_elements()
+        {
+          const std::size_t start = section("$Elements", true);
+          std::size_t       i     = start + 1;
+          if (!v4)
+            {
+              const std::size_t n = count(i++, "number of elements");
+              for (std::size_t k = 0; k < n; ++k, ++i)
+                {
+                  const auto v = numbers<long long>(i, 3, "'tag type n-tags tags... nodes...'");
+                  if (v[2] < 0 || static_cast<std::size_t>(v[2]) + 3 > v.size())
+                    fail(i + 1, "the element announces more tags than the line holds");
+                  add_element(i,
+                              static_cast<int>(v[1]),
+                              std::vector<long long>(v.begin() + 3 + v[2], v.end()));
+                }
+            }
+          else
+            {
+              const auto  header = numbers<long long>(i++, 4, "'blocks elements min-tag max-tag'");
+              std::size_t total  = 0;
+              for (long long block = 0; block < header[0]; ++block)
+                {
+                  const auto b = numbers<long long>(i++, 4, "'dimension entity type elements'");
+                  if (b[3] < 0 || b[3] > static_cast<long long>(lines.size()))
+                    fail(i,
+                         "element block of " + std::to_string(b[3]) +
+                             " elements: larger than the file");
+                  for (long long k = 0; k < b[3]; ++k, ++i)
+                    {
+                      const auto v = numbers<long long>(i, 2, "'tag nodes...'");
+                      add_element(i,
+                                  static_cast<int>(b[2]),
+                                  std::vector<long long>(v.begin() + 1, v.end()));
+                    }
+                  total += static_cast<std::size_t>(b[3]);
+                }
+              if (static_cast<long long>(total) != header[1])
+                fail(start + 2,
+                     "announces " + std::to_string(header[1]) + " elements, the blocks hold " +
+                         std::to_string(total));
+            }
+          expect_end(i, "$EndElements", "elements");
+        }
+
+        const std::string        file;
+        std::vector<std::string> lines;
+        bool                     v4 = false;
+        std::set<long long>      node_tags;
+      };
+
+      /**
+       * Mesh a .geo file with the Gmsh library into a .msh file (format 2.2),
+       * in a child process: a .geo is a program (loops, `Exit;`, meshes of any
+       * size), so the meshing gets @p seconds of wall time and @p memory_mib of
+       * address space, and a Gmsh that exits or crashes ends only the child.
+       */
+      void
+      mesh_geo_file(const std::string &geo_file,
+                    const std::string &msh_file,
+                    const int          dim,
+                    const double       seconds,
+                    const double       memory_mib)
+      {
+        const std::string entry = "Geometry/gmsh/Mesh file: '" + geo_file + "'";
+        std::filesystem::remove(msh_file);
+        const pid_t child = ::fork();
+        if (child < 0)
+          throw InputError(entry + ": cannot start the meshing process.");
+        if (child == 0)
           {
-            gmsh::open(geo_file);
-            gmsh::model::mesh::generate(dim);
-            gmsh::option::setNumber("Mesh.MshFileVersion", 2.2);
-            gmsh::write(msh_file);
+            // the MPI library's crash handlers belong to the parent
+            for (const int signal_number : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL})
+              ::signal(signal_number, SIG_DFL);
+            const rlim_t bytes = static_cast<rlim_t>(memory_mib * 1024. * 1024.);
+            const rlimit limit{bytes, bytes};
+            ::setrlimit(RLIMIT_AS, &limit);
+            int status = 0;
+            try
+              {
+                gmsh::initialize();
+                gmsh::option::setNumber("General.Terminal", 0);
+                gmsh::open(geo_file);
+                gmsh::model::mesh::generate(dim);
+                gmsh::option::setNumber("Mesh.MshFileVersion", 2.2);
+                gmsh::write(msh_file);
+                gmsh::finalize();
+              }
+            catch (...)
+              {
+                status = 3;
+              }
+            ::_exit(status);
           }
-        catch (...)
+        int        status = 0;
+        const auto start  = std::chrono::steady_clock::now();
+        while (::waitpid(child, &status, WNOHANG) == 0)
           {
-            gmsh::finalize();
-            throw InputError("Geometry/gmsh/Mesh file: Gmsh could not mesh '" + geo_file + "'.");
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+                seconds)
+              {
+                ::kill(child, SIGKILL);
+                ::waitpid(child, &status, 0);
+                std::filesystem::remove(msh_file);
+                throw InputError(entry + ": Gmsh did not finish meshing within " +
+                                 Utilities::to_string(seconds) +
+                                 " s (Geometry/gmsh/Meshing time limit): an endless loop, or a "
+                                 "mesh far finer than intended?");
+              }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
           }
-        gmsh::finalize();
+        if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))
+          {
+            std::filesystem::remove(msh_file);
+            throw InputError(entry + ": Gmsh could not mesh it" +
+                             (WIFSIGNALED(status)
+                                  ? " (it was stopped by signal " +
+                                        std::to_string(WTERMSIG(status)) +
+                                        "; out of the memory allowed by Geometry/gmsh/Meshing "
+                                        "memory limit?)"
+                                  : std::string(" (a syntax error or a geometry it cannot mesh)")) +
+                             ".");
+          }
+        if (!std::filesystem::exists(msh_file))
+          throw InputError(entry + ": Gmsh stopped without writing a mesh (an `Exit;` in the "
+                                   "file?).");
       }
     } // namespace
 
@@ -91,6 +425,15 @@ namespace StabilizedLagrangian
                           "the working directory, then beside the parameter file.");
         prm.declare_entry(
             "Global refinements", "0", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry("Meshing time limit",
+                          "300",
+                          Patterns::Double(1.),
+                          "Wall time (s) Gmsh may take to mesh a .geo file before the run is "
+                          "stopped with an error (a .geo is a program: it may loop).");
+        prm.declare_entry("Meshing memory limit",
+                          "8192",
+                          Patterns::Double(64.),
+                          "Address space (MiB) Gmsh may use to mesh a .geo file.");
       }
 
       explicit GmshMesh(const ParameterHandler &prm)
@@ -111,7 +454,11 @@ namespace StabilizedLagrangian
                         ("stabilized_lagrangian_" + std::to_string(::getpid()) + "_" +
                          std::filesystem::path(file).stem().string() + ".msh"))
                            .string();
-            mesh_geo_file(file, msh_file, dim);
+            mesh_geo_file(file,
+                          msh_file,
+                          dim,
+                          prm.get_double("Meshing time limit"),
+                          prm.get_double("Meshing memory limit"));
           }
         read_mesh(msh_file);
         if (msh_file != file)
@@ -142,7 +489,7 @@ namespace StabilizedLagrangian
       void
       read_mesh(const std::string &msh_file)
       {
-        for (const auto &[key, tag] : read_physical_names(msh_file))
+        for (const auto &[key, tag] : MshScanner(msh_file).physical_groups)
           if (key.first == dim)
             bodies[key.second] = static_cast<types::material_id>(tag);
           else
@@ -154,10 +501,12 @@ namespace StabilizedLagrangian
           {
             grid_in.read_msh(in);
           }
-        catch (const std::exception &error)
+        catch (const ExceptionBase &error)
           {
+            std::ostringstream message;
+            error.print_info(message);
             throw InputError("Geometry/gmsh/Mesh file: cannot read '" + file +
-                             "' as a Gmsh mesh: " + Utilities::trim(error.what()));
+                             "' as a Gmsh mesh: " + Utilities::trim(message.str()));
           }
         for (const auto &cell : coarse.active_cell_iterators())
           if (!cell->reference_cell().is_hyper_cube())

@@ -1,3 +1,4 @@
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -67,6 +68,33 @@ namespace StabilizedLagrangian
     TimerOutput::Scope scope(timer, "setup");
     make_grid();
     setup_after_refinement();
+    warn_if_body_behind_obstacle();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_body_behind_obstacle() const
+  {
+    if (master_surface)
+      return;
+    // most of the body on the wrong side of the surface: the obstacle's normal
+    // points into the body (g_n = (x − x̄)·n < 0 means penetration)
+    const double tolerance = 1e-8 * GridTools::diameter(triangulation);
+    unsigned int behind = 0, vertices = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            ++vertices;
+            behind += obstacle->project(cell->vertex(v)).gap(cell->vertex(v)) < -tolerance;
+          }
+    behind   = Utilities::MPI::sum(behind, mpi_communicator);
+    vertices = Utilities::MPI::sum(vertices, mpi_communicator);
+    if (2 * behind > vertices)
+      pcout << "WARNING: " << behind << " of " << vertices
+            << " cell vertices lie behind the obstacle's surface (negative gap) before the first "
+               "step. The obstacle's normal must point out of the obstacle, towards the body: "
+               "check the `Obstacle` entries (a plane's Normal, for instance).\n";
   }
 
   namespace
@@ -331,6 +359,8 @@ namespace StabilizedLagrangian
                         norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
                     increment = std::max(increment, std::sqrt(norm_squared));
                   }
+    for (const auto &bc : boundary_conditions.dirichlet)
+      bc.displacement->check_finite(mpi_communicator);
     return Utilities::MPI::max(increment, mpi_communicator);
   }
 
@@ -954,6 +984,8 @@ namespace StabilizedLagrangian
     if (master_surface && folded(solver_parameters.geometry_method))
       update_pairings(false);
     assemble_volume(assemble_matrix);
+    for (const auto &bc : boundary_conditions.neumann)
+      bc.traction->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
@@ -1068,7 +1100,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_neumann_contribution(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const unsigned int                                    face_no,
-      Functions::ParsedFunction<dim>                       &traction,
+      Parameters::BoundaryFunction<dim>                    &traction,
       FEFaceValues<dim>                                    &fe_face_values,
       Vector<double>                                       &cell_rhs) const
   {

@@ -185,7 +185,9 @@ namespace StabilizedLagrangian
           TimerOutput::Scope scope(timer, "contact search");
           compute_contact_statistics(stats);
         }
-        last_normal_force = stats.normal_force;
+        last_normal_force      = stats.normal_force;
+        most_points_in_contact = std::max(most_points_in_contact, stats.points_in_contact);
+        contact_point_count    = stats.contact_points;
         output_results(step, time);
         step_start      = ghosted_solution;
         stats.wall_time = step_clock.wall_time();
@@ -205,6 +207,13 @@ namespace StabilizedLagrangian
           << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
           << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
           << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n";
+    // a scene that runs but cannot be what was meant: the contact surface is
+    // not the one that touches the obstacle, or the obstacle faces away
+    if (most_points_in_contact <= 1 && contact_point_count > 1)
+      pcout << "WARNING: at most " << most_points_in_contact << " of the " << contact_point_count
+            << " contact points was in contact in any load step. Is `Contact/Contact boundary "
+               "ids` the surface that meets the obstacle, and does the obstacle's normal point "
+               "towards the body?\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
     write_run_summary(step,
@@ -281,6 +290,7 @@ namespace StabilizedLagrangian
         bc.displacement->set_time(t);
         VectorTools::interpolate_boundary_values(
             dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
+        bc.displacement->check_finite(mpi_communicator);
       }
     // The increment is not added to the iterate here: the first Newton solve
     // of the step applies it together with the tangent predictor.

@@ -445,7 +445,7 @@ namespace StabilizedLagrangian
     void
     add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
                              const unsigned int                                    face_no,
-                             Functions::ParsedFunction<dim>                       &traction,
+                             Parameters::BoundaryFunction<dim>                    &traction,
                              FEFaceValues<dim>                                    &fe_face_values,
                              Vector<double>                                       &cell_rhs) const;
     double
@@ -501,6 +501,9 @@ namespace StabilizedLagrangian
      */
     void
     refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    /** Warn when most of the body starts behind the rigid obstacle's surface. */
+    void
+    warn_if_body_behind_obstacle() const;
     /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
     double
     threshold_pressure(double contact_pressure) const;
@@ -604,6 +607,8 @@ namespace StabilizedLagrangian
      * friction threshold sees zero there (threshold_pressure())
      */
     double negligible_pressure = 0.;
+    /** the most contact points in contact in any load step of the run, and their number */
+    unsigned int most_points_in_contact = 0, contact_point_count = 0;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     bool                          dirichlet_predictor = false;
