@@ -19,7 +19,7 @@ import subprocess
 import sys
 import sltest
 
-executable, workdir = sys.argv[1], sys.argv[2]
+executable, workdir = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 shutil.rmtree(workdir, ignore_errors=True)
 os.makedirs(workdir)
 check = sltest.Checker()
