@@ -251,51 +251,48 @@ namespace StabilizedLagrangian
       dirichlet.clear();
       neumann.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
-        auto function =
-            std::make_shared<BoundaryFunction<dim>>("Boundary conditions/" + slot + "/" + name);
+        const std::string entry    = "Boundary conditions/" + slot + "/" + name;
+        auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
         prm.enter_subsection(name);
-        const std::string expected = dim == 2 ? "x,y,t" : "x,y,z,t";
-        if (Utilities::split_string_list(prm.get("Variable names")).size() != dim + 1)
-          throw InputError("Boundary conditions/" + slot + "/" + name + "/Variable names = '" +
-                           prm.get("Variable names") + "': a " + std::to_string(dim) +
-                           "D function needs " + std::to_string(dim + 1) +
-                           " variable names, the coordinates then time, e.g. '" + expected + "'.");
         const std::vector<std::string> variables =
             Utilities::split_string_list(prm.get("Variable names"));
+        if (variables.size() != dim + 1)
+          throw InputError(entry + "/Variable names = '" + prm.get("Variable names") + "': a " +
+                           std::to_string(dim) + "D function needs " + std::to_string(dim + 1) +
+                           " variable names, the coordinates then time, e.g. '" +
+                           (dim == 2 ? "x,y,t" : "x,y,z,t") + "'.");
         for (const auto &constant : Utilities::split_string_list(prm.get("Function constants")))
           {
             const std::string constant_name =
                 Utilities::trim(constant.substr(0, constant.find('=')));
             if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
-              throw InputError("Boundary conditions/" + slot + "/" + name +
-                               "/Function constants: '" + constant_name +
+              throw InputError(entry + "/Function constants: '" + constant_name +
                                "' is also a variable name (" + prm.get("Variable names") +
                                "); give the constant another name.");
           }
+        const std::string cannot_parse =
+            entry + ": the function could not be parsed (" + std::to_string(dim) +
+            " components separated by ';', variables x, y" + (dim == 3 ? ", z" : "") +
+            ", t, constants 'name=value, ...').";
         try
           {
             function->parse_parameters(prm);
             // the expression is compiled at its first evaluation: an undefined
-            // name shows up here, before anything is written, not mid-run
+            // name shows up here, before anything is written, not mid-run. The
+            // probe point need not be on the boundary, so its value is not checked.
             Vector<double> probe(dim);
-            function->vector_value(Point<dim>(), probe);
+            function->Functions::ParsedFunction<dim>::vector_value(Point<dim>(), probe);
           }
         catch (const ExceptionBase &e)
           {
             std::ostringstream message;
             e.print_info(message);
-            throw InputError("Boundary conditions/" + slot + "/" + name +
-                             ": the function could not be parsed (" + std::to_string(dim) +
-                             " components separated by ';', variables x, y" +
-                             (dim == 3 ? ", z" : "") + ", t). " + message.str());
+            throw InputError(cannot_parse + " " + Utilities::trim(message.str()));
           }
         catch (...)
           {
             // the expression parser's own exceptions are not std::exceptions
-            throw InputError("Boundary conditions/" + slot + "/" + name +
-                             ": the function could not be parsed (" + std::to_string(dim) +
-                             " components separated by ';', variables x, y" +
-                             (dim == 3 ? ", z" : "") + ", t, constants 'name=value, ...').");
+            throw InputError(cannot_parse);
           }
         prm.leave_subsection();
         return function;
@@ -736,12 +733,17 @@ namespace StabilizedLagrangian
         chain.pop_back();
       }
 
+      /** The parameter file @p filename expanded; refused if it sets no parameter. */
       ExpandedFile
       read_file(const std::string &filename)
       {
         ExpandedFile             result;
         std::vector<std::string> chain;
         expand(filename, chain, result);
+        if (!std::regex_search(result.text, std::regex("(^|\n)[ \t]*set[ \t]")))
+          throw InputError("The parameter file '" + filename +
+                           "' sets no parameter (an empty file?). Run the program without a "
+                           "file for the built-in scene.");
         return result;
       }
 
@@ -807,10 +809,6 @@ namespace StabilizedLagrangian
       ParameterHandler prm;
       prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
       const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
-      if (is_file && !std::regex_search(content.text, std::regex("(^|\n)[ \t]*set[ \t]")))
-        throw InputError("The parameter file '" + text +
-                         "' sets no parameter (an empty file?). Run the program without a "
-                         "file for the built-in scene.");
       try
         {
           prm.parse_input_from_string(content.text, "", true);

@@ -79,17 +79,19 @@ end
 """
 GOOD_DISPLACEMENT = "0.1*d*t; -d*min(2*t, 1)"
 
-# a 2 x 1 quadrilateral mesh in Gmsh format 2.2 with named boundaries and body
-GOOD_MSH = """$MeshFormat
-2.2 0 8
-$EndMeshFormat
-$PhysicalNames
+# the physical groups of the test meshes: named boundaries and body
+PHYSICAL_NAMES = """$PhysicalNames
 3
 1 1 "bottom"
 1 2 "top"
 2 3 "block"
 $EndPhysicalNames
-$Nodes
+"""
+# a 2 x 1 quadrilateral mesh in Gmsh format 2.2
+GOOD_MSH = """$MeshFormat
+2.2 0 8
+$EndMeshFormat
+""" + PHYSICAL_NAMES + """$Nodes
 6
 1 0 0 0
 2 1 0 0
@@ -112,13 +114,7 @@ $EndElements
 GOOD_MSH4 = """$MeshFormat
 4.1 0 8
 $EndMeshFormat
-$PhysicalNames
-3
-1 1 "bottom"
-1 2 "top"
-2 3 "block"
-$EndPhysicalNames
-$Entities
+""" + PHYSICAL_NAMES + """$Entities
 0 2 1 0
 1 0 0 0 2 0 0 1 1 0
 2 0 1 0 2 1 0 1 2 0

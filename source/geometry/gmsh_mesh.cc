@@ -139,7 +139,7 @@ namespace StabilizedLagrangian
           return lines.size();
         }
 
-        /** The integers or reals of line @p index, exactly @p n of them if n > 0. */
+        /** The integers or reals of line @p index: at least @p at_least, and nothing else. */
         template <typename T>
         std::vector<T>
         numbers(const std::size_t index, const std::size_t at_least, const std::string &what) const

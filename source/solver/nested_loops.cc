@@ -133,6 +133,8 @@ namespace StabilizedLagrangian
     double       &step_size     = controller.step_size;
     Timer         wall_clock;
     WorkCounters  at_step_start = work;
+    // the most contact points in contact in any step, and their number
+    unsigned int most_points_in_contact = 0, contact_point_count = 0;
     while (time < load_stepping.end_time * (1. - 1e-12))
       {
         step_size = std::min(step_size, load_stepping.end_time - time);

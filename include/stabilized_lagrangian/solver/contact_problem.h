@@ -607,8 +607,6 @@ namespace StabilizedLagrangian
      * friction threshold sees zero there (threshold_pressure())
      */
     double negligible_pressure = 0.;
-    /** the most contact points in contact in any load step of the run, and their number */
-    unsigned int most_points_in_contact = 0, contact_point_count = 0;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     bool                          dirichlet_predictor = false;
