@@ -489,6 +489,14 @@ namespace StabilizedLagrangian
                         "system instead of failing. Pairs that violate the inf-sup condition "
                         "(Q1/P2) make the Newton system singular wherever contact is active; "
                         "with this their (non-unique) multipliers can be looked at.");
+      prm.declare_entry("Work space increase",
+                        "20",
+                        Patterns::Integer(0, 100000),
+                        "MUMPS only: percent added to the work space MUMPS estimates at the "
+                        "analysis (its ICNTL(14)). Pivoting on the saddle-point systems can need "
+                        "more than estimated: where the factorisation says the space is too small "
+                        "(INFOG(1) = -8, -9, -11, -14, -15, -17, -20), it is redone with this "
+                        "margin quadrupled, up to three times, before the run stops.");
       prm.declare_entry("Threads per rank",
                         "1",
                         Patterns::Integer(1, 256),
@@ -508,6 +516,7 @@ namespace StabilizedLagrangian
       direct_solver        = prm.get("Direct solver");
       null_pivot_detection = prm.get_bool("Null pivot detection");
       threads_per_rank     = prm.get_integer("Threads per rank");
+      workspace_increase   = prm.get_integer("Work space increase");
       if (null_pivot_detection && direct_solver != "Amesos_Mumps")
         throw InputError("Linear solver/Null pivot detection = true needs Direct solver = "
                          "Amesos_Mumps, got " +

@@ -49,8 +49,9 @@ for name, (text, expected) in cases.items():
 text = base.replace("set Maximum step cuts    = 5", "set Maximum step cuts    = 2")
 text += """
 subsection Nonlinear solver
-  subsection Friction loop
-    # the first step needs more: its thresholds start from zero
+  subsection Newton
+    # every Newton loop of the patin needs more (a fixed-point loop that
+    # runs out of iterations is folded into Newton instead of failing)
     set Maximum iterations = 1
   end
 end

@@ -89,6 +89,13 @@ namespace StabilizedLagrangian
       void
       check_finite(const MPI_Comm communicator) const;
 
+      /** The subsection path of the function, for messages. */
+      const std::string &
+      name() const
+      {
+        return entry;
+      }
+
     private:
       void
       note(const Point<dim> &point, const double value, const unsigned int component) const;
@@ -193,6 +200,7 @@ namespace StabilizedLagrangian
       std::string  direct_solver;
       bool         null_pivot_detection = false; ///< MUMPS: solve singular systems
       unsigned int threads_per_rank     = 1;     ///< BLAS/OpenMP threads of each MPI rank
+      int          workspace_increase   = 20;    ///< MUMPS ICNTL(14), percent
 
       static void
       declare_parameters(ParameterHandler &prm);

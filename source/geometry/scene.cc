@@ -7,6 +7,8 @@
 
 #include <stabilized_lagrangian/geometry/scene.h>
 
+#include <functional>
+
 namespace StabilizedLagrangian
 {
   namespace Geometry
@@ -198,6 +200,32 @@ namespace StabilizedLagrangian
                 else
                   face->set_boundary_id(0);
               }
+        if (dim == 3)
+          close_contact_zone(triangulation);
+      }
+
+    private:
+      /**
+       * In 3D, the children of a refined face all join the contact zone when
+       * one of them is in it: where the zone ended inside a refined face, a
+       * hanging vertex of Γc would be constrained to a vertex off Γc, which
+       * has no multiplier. (In 2D the boundary has no hanging vertices.)
+       */
+      static void
+      close_contact_zone(parallel::distributed::Triangulation<dim> &triangulation)
+      {
+        const std::function<void(const typename Triangulation<dim>::face_iterator &)> join =
+            [&join](const typename Triangulation<dim>::face_iterator &face) {
+              face->set_boundary_id(2);
+              if (face->has_children())
+                for (unsigned int c = 0; c < face->n_children(); ++c)
+                  join(face->child(c));
+            };
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->level() > 0)
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == 2)
+                join(cell->parent()->face(f));
       }
 
     private:

@@ -22,7 +22,7 @@ namespace StabilizedLagrangian
               "contact_force_y_N";
     if (dim == 3)
       header << ",contact_force_z_N";
-    header << ",wall_time_s\n";
+    header << ",folded_loops,friction_law_violations,wall_time_s\n";
     SafeFiles::write_atomically(statistics_path, header.str());
     SafeFiles::write_atomically(iterations_path,
                                 "step,geometry_iteration,friction_iteration,status_iteration,"
@@ -79,7 +79,8 @@ namespace StabilizedLagrangian
         << s.normal_force << ',' << s.tangential_force;
     for (unsigned int d = 0; d < dimension; ++d)
       row << ',' << s.contact_force[d];
-    row << ',' << std::setprecision(4) << s.wall_time << '\n';
+    row << ',' << s.folded_loops << ',' << s.friction_law_violations << ',' << std::setprecision(4)
+        << s.wall_time << '\n';
     std::ostringstream rows;
     for (const auto &r : s.inner_loops)
       rows << s.step << ',' << r.geometry_iteration << ',' << r.friction_iteration << ','

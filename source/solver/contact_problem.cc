@@ -19,6 +19,7 @@
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
@@ -70,6 +71,34 @@ namespace StabilizedLagrangian
     make_grid();
     setup_after_refinement();
     warn_if_body_behind_obstacle();
+    warn_if_pair_locks();
+    warn_if_dirichlet_not_ramped();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_pair_locks() const
+  {
+    // Volumetric locking: with a bulk modulus far above the shear modulus,
+    // K/G = 2(1 + ν)/(3(1 − 2ν)), low-order displacements cannot deform at
+    // constant volume and the body answers far too stiffly (a block of
+    // ν = 0.4999 pressed on a plane with Q1/P1: 3.6 times the normal force of
+    // Q2/P2). Q1 locks from K/G ≈ 50 (ν ≈ 0.49), Q2 much later.
+    const double limit = fe_pair->displacement_degree() == 1 ? 0.49 : 0.4999;
+    for (const auto &material : materials)
+      {
+        const double nu = material.model->poissons_ratio();
+        if (nu < limit)
+          continue;
+        pcout << "WARNING: " << material.slot << ": Poisson's ratio " << nu << " (bulk modulus "
+              << 2. * (1. + nu) / (3. * (1. - 2. * nu))
+              << " times the shear modulus) with displacements of degree "
+              << fe_pair->displacement_degree()
+              << " (Contact/Finite element pair = " << contact_parameters.fe_pair
+              << "): the body locks volumetrically, its displacements and forces are far too "
+                 "stiff. Use quadratic displacements (Q2/P1, Q2/P2), which lock much later; no "
+                 "formulation here is locking-free yet.\n";
+      }
   }
 
   template <int dim>
@@ -109,6 +138,14 @@ namespace StabilizedLagrangian
      * decided by the rounding, that is by the BLAS kernel and thread count.
      */
     constexpr double negligible_pressure_fraction = 1e-12;
+
+    /**
+     * The gap, as a fraction of the body's diameter, below which a point
+     * touches for the contact status: coordinates carry round-off of about
+     * 1e-16 of the body's size, so a vertex meant to rest on the obstacle sits
+     * within 1e-14 of it or so.
+     */
+    constexpr double touching_gap_fraction = 1e-12;
   } // namespace
 
   template <int dim>
@@ -126,6 +163,7 @@ namespace StabilizedLagrangian
     E_max               = Utilities::MPI::max(E_max, mpi_communicator);
     nodal_stiffness     = E_max * std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
     negligible_pressure = negligible_pressure_fraction * E_max;
+    touching_gap        = touching_gap_fraction * GridTools::diameter(triangulation);
     setup_dofs();
     setup_contact_points();
     material_history.initialize(
@@ -339,6 +377,8 @@ namespace StabilizedLagrangian
   double
   ContactProblem<dim>::largest_dirichlet_increment()
   {
+    // The body starts undeformed (u = 0), so the first step's increment is
+    // the value at the end of that step, whatever the function gives at t = 0.
     const double   step      = load_stepping.end_time / load_stepping.n_steps;
     double         increment = 0.;
     Vector<double> before(dim), after(dim);
@@ -350,8 +390,12 @@ namespace StabilizedLagrangian
               for (const unsigned int v : cell->face(f)->vertex_indices())
                 for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
                   {
-                    bc.displacement->set_time(k * step);
-                    bc.displacement->vector_value(cell->face(f)->vertex(v), before);
+                    before = 0.;
+                    if (k > 0)
+                      {
+                        bc.displacement->set_time(k * step);
+                        bc.displacement->vector_value(cell->face(f)->vertex(v), before);
+                      }
                     bc.displacement->set_time((k + 1) * step);
                     bc.displacement->vector_value(cell->face(f)->vertex(v), after);
                     double norm_squared = 0.;
@@ -363,6 +407,40 @@ namespace StabilizedLagrangian
     for (const auto &bc : boundary_conditions.dirichlet)
       bc.displacement->check_finite(mpi_communicator);
     return Utilities::MPI::max(increment, mpi_communicator);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_dirichlet_not_ramped() const
+  {
+    // A prescribed displacement that is not zero at t = 0 is applied whole in
+    // the first load step, and cutting that step does not make it smaller.
+    Vector<double> value(dim);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      {
+        double largest = 0.;
+        bc.displacement->set_time(0.);
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
+                for (const unsigned int v : cell->face(f)->vertex_indices())
+                  {
+                    // (not noted as a failure: the run never evaluates t = 0)
+                    bc.displacement->Functions::ParsedFunction<dim>::vector_value(
+                        cell->face(f)->vertex(v), value);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (bc.components[d] && std::isfinite(value[d]))
+                        largest = std::max(largest, std::abs(value[d]));
+                  }
+        largest = Utilities::MPI::max(largest, mpi_communicator);
+        if (largest > 0.)
+          pcout << "WARNING: " << bc.displacement->name()
+                << ": the prescribed displacement is not zero at t = 0 (up to " << largest
+                << " mm); the body starts undeformed, so the first load step applies it at "
+                   "once, and cutting that step does not reduce it. Make it grow from zero "
+                   "with t (e.g. multiply it by t / End time) to spread it over the steps.\n";
+      }
   }
 
   template <int dim>
@@ -469,10 +547,16 @@ namespace StabilizedLagrangian
       {
         if (line.index >= n_multipliers)
           continue;
-        Assert(std::all_of(line.entries.begin(),
-                           line.entries.end(),
-                           [&](const auto &entry) { return entry.first < n_multipliers; }),
-               ExcInternalError());
+        // the contact boundary must not end inside a refined face: there a
+        // hanging vertex of Γc depends on one off it, which has no multiplier
+        AssertThrow(std::all_of(line.entries.begin(),
+                                line.entries.end(),
+                                [&](const auto &entry) { return entry.first < n_multipliers; }),
+                    ExcMessage("Contact/Contact boundary ids: the contact boundary ends inside a "
+                               "refined face (some children of the face are on it, some not), "
+                               "so a multiplier at a hanging vertex would depend on one off the "
+                               "contact boundary. Give all the children of a refined face the "
+                               "same boundary id."));
         constraints.add_line(n_u + line.index);
         for (const auto &[column, weight] : line.entries)
           constraints.add_entry(n_u + line.index, n_u + column, weight);
@@ -719,8 +803,10 @@ namespace StabilizedLagrangian
     // the factorisation refers to the old matrix: release it first
     direct_solver.reset();
     system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
-    direct_solver = std::make_unique<LinearSolvers::DirectSolver>(
-        linear_solver_parameters.direct_solver, linear_solver_parameters.null_pivot_detection);
+    direct_solver =
+        std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver,
+                                                      linear_solver_parameters.null_pivot_detection,
+                                                      linear_solver_parameters.workspace_increase);
     sparsity_ready = true;
   }
 
@@ -1353,8 +1439,20 @@ namespace StabilizedLagrangian
     if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
       state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
     if (folded(solver_parameters.status_method))
-      state.in_contact = Contact::is_in_contact(Contact::augmented_pressure(
-          k.contact_pressure, state.pairing.gap(k.position), contact_parameters.r_n));
+      state.in_contact = status(state, k);
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::status(const ContactPointState<dim> &state,
+                              const ContactKinematics<dim> &k) const
+  {
+    // A gap within round-off of zero touches: a body resting on the obstacle
+    // by a vertex placed 1e-14 mm above it must start in contact, as one at
+    // exactly zero does, or a load-controlled body has no support at all.
+    const double gap = state.pairing.gap(k.position);
+    return Contact::is_in_contact(Contact::augmented_pressure(
+        k.contact_pressure, std::abs(gap) <= touching_gap ? 0. : gap, contact_parameters.r_n));
   }
 
   template <int dim>
@@ -1417,6 +1515,15 @@ namespace StabilizedLagrangian
     unsigned int   counts[4]    = {0, 0, 0, 0}; // all, in contact, stick, slip
     double         normal_force = 0.;
     Tensor<1, dim> total_force, tangential_force;
+    double         largest_displacement = 0.;
+    for (const auto i : locally_owned_u)
+      largest_displacement = std::max(largest_displacement, std::abs(solution(i)));
+    // the multiplier equations of the converged iterate (system_rhs is its residual)
+    Contact::FrictionLawCheck<dim> check(largest_displacement);
+    for (const auto &[row, component] : owned_multiplier_components)
+      if (multiplier_length_weights(row) > 0.)
+        check.add_multiplier_row(component == 0,
+                                 std::abs(system_rhs(row)) / multiplier_length_weights(row));
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       const auto point = point_response(state, k);
       ++counts[0];
@@ -1424,6 +1531,9 @@ namespace StabilizedLagrangian
         return;
       ++counts[1];
       ++counts[point.status() == Contact::Status::stick ? 2 : 3];
+      check.add_point(k.position - k.displacement,
+                      point.tangential_traction().norm(),
+                      friction_law->threshold(threshold_pressure(k.contact_pressure)));
       active_set.push_back(k.position - k.displacement);
       normal_force += k.JxW * point.normal_traction();
       total_force += k.JxW * point.normal_traction() * state.pairing.normal;
@@ -1441,6 +1551,9 @@ namespace StabilizedLagrangian
     stats.tangential_force          = tangential.norm();
     for (unsigned int d = 0; d < dim; ++d)
       stats.contact_force[d] = total[d];
+    stats.friction_law_violations =
+        check.gather(mpi_communicator, solver_parameters.friction_tolerance);
+    stats.friction_law_report = check.report();
   }
 
   template <int dim>

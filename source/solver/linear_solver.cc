@@ -7,6 +7,9 @@
 
 #include <dlfcn.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <array>
 #include <cmath>
 #include <cstdlib>
 
@@ -39,9 +42,12 @@ namespace StabilizedLagrangian
                                  : "; the environment's" + overridden + " is overridden)");
     }
 
-    DirectSolver::DirectSolver(const std::string &solver_name, const bool null_pivot_detection)
+    DirectSolver::DirectSolver(const std::string &solver_name,
+                               const bool         null_pivot_detection,
+                               const int          workspace_increase)
         : solver_name(solver_name)
         , null_pivot_detection(null_pivot_detection)
+        , workspace_margin(workspace_increase)
     {
     }
 
@@ -55,10 +61,81 @@ namespace StabilizedLagrangian
       factored_matrix = nullptr;
     }
 
+    namespace
+    {
+      /** MUMPS's INFOG(1) < 0 in words (MUMPS 5 user's guide, §8). */
+      std::string
+      mumps_error(const int infog1, const int infog2)
+      {
+        const std::string code = "MUMPS INFOG(1) = " + std::to_string(infog1) +
+                                 ", INFOG(2) = " + std::to_string(infog2) + ": ";
+        switch (infog1)
+          {
+          case -6:
+            return code + "the matrix is structurally singular";
+          case -10:
+            return code + "the matrix is numerically singular";
+          case -5:
+          case -7:
+          case -13:
+            return code + "the factorisation could not allocate its memory (out of memory)";
+          case -8:
+          case -9:
+          case -11:
+          case -14:
+          case -15:
+          case -17:
+          case -20:
+            return code + "the factorisation's work space is too small";
+          default:
+            return code + "the factorisation failed";
+          }
+      }
+
+      /** Whether INFOG(1) says that a larger work space (ICNTL(14)) would do. */
+      bool
+      workspace_too_small(const int infog1)
+      {
+        return infog1 == -8 || infog1 == -9 || infog1 == -11 || infog1 == -14 || infog1 == -15 ||
+               infog1 == -17 || infog1 == -20;
+      }
+    } // namespace
+
     bool
     DirectSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                         TrilinosWrappers::MPI::Vector        &x,
                         const TrilinosWrappers::MPI::Vector  &b)
+    {
+      // MUMPS estimates its work space at the analysis and adds ICNTL(14)
+      // percent (20 by default); pivoting on an indefinite saddle point can
+      // need more. Where the factorisation says the space was too small, it is
+      // redone with the margin quadrupled, a few times.
+      error.clear();
+      retry_note.clear();
+      for (unsigned int attempt = 0;; ++attempt)
+        {
+          if (factor_and_solve(matrix, x, b))
+            return true;
+          const std::array<int, 2> infog = mumps_infog(matrix);
+          if (infog[0] >= 0)
+            {
+              error = solver_name + " failed (a singular system, or a solution that is not finite)";
+              return false;
+            }
+          error = mumps_error(infog[0], infog[1]);
+          if (!workspace_too_small(infog[0]) || attempt == 3)
+            return false;
+          workspace_margin = std::max(4 * workspace_margin, 20);
+          retry_note = error + "; factorised again with the work space increase ICNTL(14) = " +
+                       std::to_string(workspace_margin) + " percent";
+          reset();
+        }
+    }
+
+    bool
+    DirectSolver::factor_and_solve(const TrilinosWrappers::SparseMatrix &matrix,
+                                   TrilinosWrappers::MPI::Vector        &x,
+                                   const TrilinosWrappers::MPI::Vector  &b)
     {
       // Amesos takes non-const pointers but modifies neither the matrix nor b
       auto &A   = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
@@ -70,24 +147,45 @@ namespace StabilizedLagrangian
           problem = std::make_unique<Epetra_LinearProblem>(&A, &x.trilinos_vector(), &rhs);
           Amesos factory;
           solver.reset(factory.Create(solver_name.c_str(), *problem));
-          if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get());
-              mumps && null_pivot_detection)
-            mumps->SetICNTL(24, 1);
-          if (!solver || solver->SymbolicFactorization() != 0)
+          if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
             {
-              reset();
-              return false;
+              if (null_pivot_detection)
+                mumps->SetICNTL(24, 1);
+              mumps->SetICNTL(14, workspace_margin);
             }
+          if (!solver || solver->SymbolicFactorization() != 0)
+            return false;
           factored_matrix = &matrix;
         }
       problem->SetLHS(&x.trilinos_vector());
       problem->SetRHS(&rhs);
       if (solver->NumericFactorization() != 0 || solver->Solve() != 0)
-        {
-          reset();
-          return false;
-        }
+        return false;
       return std::isfinite(x.linfty_norm());
+    }
+
+    std::array<int, 2>
+    DirectSolver::mumps_infog(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      // INFOG is defined on the host (rank 0) only
+      std::array<int, 2> infog = {{0, 0}};
+      if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver.get()))
+        if (dealii::Utilities::MPI::this_mpi_process(matrix.get_mpi_communicator()) == 0)
+          infog = {{mumps->GetINFOG()[0], mumps->GetINFOG()[1]}};
+      reset();
+      return dealii::Utilities::MPI::broadcast(matrix.get_mpi_communicator(), infog, 0);
+    }
+
+    const std::string &
+    DirectSolver::last_error() const
+    {
+      return error;
+    }
+
+    const std::string &
+    DirectSolver::last_retry() const
+    {
+      return retry_note;
     }
   } // namespace LinearSolvers
 } // namespace StabilizedLagrangian

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <algorithm>
 #include <iomanip>
@@ -135,6 +136,8 @@ namespace StabilizedLagrangian
     WorkCounters  at_step_start = work;
     // the most contact points in contact in any step, and their number
     unsigned int most_points_in_contact = 0, contact_point_count = 0;
+    // steps whose state breaks the friction law (the first few are named)
+    unsigned int friction_law_warnings = 0;
     while (time < load_stepping.end_time * (1. - 1e-12))
       {
         step_size = std::min(step_size, load_stepping.end_time - time);
@@ -158,6 +161,14 @@ namespace StabilizedLagrangian
             contact_faces  = saved_faces;
             time           = saved_time;
             update_ghosts();
+            if (!unrecoverable_failure.empty())
+              {
+                pcout << "ERROR: load step " << step + 1 << " from t = " << time << ": "
+                      << unrecoverable_failure
+                      << ", which a smaller load step cannot cure. The results of the " << step
+                      << " converged steps are in " << output_parameters.directory << ".\n";
+                return false;
+              }
             // the smallest step is the nominal one halved `Maximum step cuts`
             // times: a run cannot crawl on with ever smaller steps
             if (step_size <= smallest_step * (1. + 1e-12))
@@ -195,6 +206,15 @@ namespace StabilizedLagrangian
         stats.wall_time = step_clock.wall_time();
         statistics.write(stats);
         print_step_line(stats, wall_clock.wall_time());
+        if (stats.friction_law_violations > 0 && ++friction_law_warnings <= 3)
+          pcout << "WARNING: load step " << step << ": " << stats.friction_law_report
+                << " The Newton criterion accepted this state"
+                << (solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled
+                        ? ""
+                        : " (with `Nonlinear solver/Newton/Residual = scaled` it would not: the "
+                          "absolute residual weighs a stick point's slip by r_t)")
+                << "; column friction_law_violations of statistics.csv"
+                << (friction_law_warnings == 3 ? " (no further warnings)" : "") << ".\n";
         // grow back towards the nominal step after a cut
         step_size = std::min(2. * step_size, nominal_step);
         if (output_parameters.checkpoint_interval > 0 &&
@@ -351,9 +371,15 @@ namespace StabilizedLagrangian
         if (relative_displacement_change(previous) <= solver_parameters.geometry_tolerance)
           return true;
       }
+    // the pairing re-evaluated at every Newton iterate instead
     pcout << "  geometry loop: no convergence in " << solver_parameters.geometry_max_iterations
-          << " iterations (Nonlinear solver/Geometry loop/Maximum iterations)\n";
-    return false;
+          << " iterations (Nonlinear solver/Geometry loop/Maximum iterations); the pairing is "
+             "folded into the generalized Newton for this load step\n";
+    ++stats.folded_loops;
+    ++stats.geometry_iterations;
+    return with_loop_folded(solver_parameters.geometry_method, [&]() {
+      return friction_loop(stats, solver_parameters.geometry_max_iterations + 1);
+    });
   }
 
   template <int dim>
@@ -374,9 +400,29 @@ namespace StabilizedLagrangian
         if (update_friction_thresholds() <= solver_parameters.friction_tolerance)
           return true;
       }
+    // The fixed point on s = μ λ_n does not contract on this step: the
+    // generalized Newton linearises the threshold instead (seed §2.3), which
+    // converges where the fixed point cycles.
     pcout << "  friction loop: no convergence in " << solver_parameters.friction_max_iterations
-          << " iterations (Nonlinear solver/Friction loop/Maximum iterations)\n";
-    return false;
+          << " iterations (Nonlinear solver/Friction loop/Maximum iterations); the friction "
+             "threshold is folded into the generalized Newton for this load step\n";
+    ++stats.folded_loops;
+    ++stats.friction_iterations;
+    return with_loop_folded(solver_parameters.friction_method, [&]() {
+      return status_loop(stats, k, solver_parameters.friction_max_iterations + 1);
+    });
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::with_loop_folded(Parameters::LoopMethod      &method,
+                                        const std::function<bool()> &solve)
+  {
+    const Parameters::LoopMethod chosen = method;
+    method                              = Parameters::LoopMethod::newton;
+    const bool converged                = solve();
+    method                              = chosen;
+    return converged;
   }
 
   template <int dim>
@@ -391,6 +437,11 @@ namespace StabilizedLagrangian
         ++stats.status_iterations;
         return newton_loop(stats, k, j, 1);
       }
+    // the statuses each iteration started from: with s and the pairing
+    // frozen, statuses seen before lead to the same Newton solution, so a
+    // repeat is a cycle that never ends
+    std::vector<std::vector<bool>> seen{contact_statuses()};
+    std::string                    reason;
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
@@ -400,10 +451,49 @@ namespace StabilizedLagrangian
         stats.inner_loops.back().status_changes = changes;
         if (changes == 0)
           return true;
+        seen.push_back(contact_statuses());
+        const unsigned int repeated = earlier_statuses(seen);
+        if (repeated < seen.size() - 1)
+          {
+            reason = "the statuses after iteration " + std::to_string(i) +
+                     " repeat those after iteration " + std::to_string(repeated) + " (a cycle)";
+            break;
+          }
       }
-    pcout << "  status loop: no convergence in " << solver_parameters.status_max_iterations
-          << " iterations (Nonlinear solver/Status loop/Maximum iterations)\n";
-    return false;
+    if (reason.empty())
+      reason = "no convergence in " + std::to_string(solver_parameters.status_max_iterations) +
+               " iterations (Nonlinear solver/Status loop/Maximum iterations)";
+    // The active-set fixed point cycles or stalls: the semismooth Newton on
+    // the statuses (a primal-dual active set method) converges locally
+    // superlinearly where the fixed point cycles, so it takes over for the step.
+    pcout << "  status loop: " << reason
+          << "; the statuses are folded into the generalized Newton for this load step\n";
+    ++stats.folded_loops;
+    ++stats.status_iterations;
+    return with_loop_folded(solver_parameters.status_method, [&]() {
+      return newton_loop(stats, k, j, static_cast<unsigned int>(seen.size()));
+    });
+  }
+
+  template <int dim>
+  std::vector<bool>
+  ContactProblem<dim>::contact_statuses() const
+  {
+    std::vector<bool> statuses(contact_states.size());
+    for (unsigned int p = 0; p < contact_states.size(); ++p)
+      statuses[p] = contact_states[p].in_contact;
+    return statuses;
+  }
+
+  template <int dim>
+  unsigned int
+  ContactProblem<dim>::earlier_statuses(const std::vector<std::vector<bool>> &seen) const
+  {
+    // collective: equal on every rank
+    for (unsigned int i = 0; i + 1 < seen.size(); ++i)
+      if (Utilities::MPI::min(seen[i] == seen.back() ? 1u : 0u, mpi_communicator) == 1)
+        return i;
+    return seen.size() - 1;
   }
 
   template <int dim>
@@ -481,15 +571,24 @@ namespace StabilizedLagrangian
           solved = direct_solver->solve(system_matrix, update, system_rhs);
         }
         ++work.newton_iterations;
+        if (!direct_solver->last_retry().empty())
+          pcout << "  Newton: " << direct_solver->last_retry() << "\n";
         if (!solved)
           {
-            pcout << "  Newton: the linear solver failed: the Newton system is singular. Usual "
-                     "causes: a rigid-body motion the boundary conditions leave free; a sticking "
-                     "contact point whose tangential displacement is prescribed (a Dirichlet "
-                     "condition on a node of the contact boundary, with friction: its friction "
-                     "multiplier is then undetermined, and `Linear solver/Null pivot detection "
-                     "= true` picks one of the equivalent values); a pair that violates the "
-                     "inf-sup condition (Q1/P2).\n";
+            const std::string &error = direct_solver->last_error();
+            pcout << "  Newton: the linear solver failed: " << error << ".\n";
+            // a smaller load step has the same matrix size and structure
+            if (error.find("memory") != std::string::npos ||
+                error.find("work space") != std::string::npos)
+              unrecoverable_failure = "the linear solver failed: " + error;
+            if (error.find("singular") != std::string::npos)
+              pcout << "  The Newton system is singular. Usual "
+                       "causes: a rigid-body motion the boundary conditions leave free; a sticking "
+                       "contact point whose tangential displacement is prescribed (a Dirichlet "
+                       "condition on a node of the contact boundary, with friction: its friction "
+                       "multiplier is then undetermined, and `Linear solver/Null pivot detection "
+                       "= true` picks one of the equivalent values); a pair that violates the "
+                       "inf-sup condition (Q1/P2).\n";
             return false;
           }
         newton_constraints.distribute(update);
@@ -582,10 +681,8 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "contact search");
     unsigned int       changes = 0;
-    const double       r_n     = contact_parameters.r_n;
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const bool in_contact = Contact::is_in_contact(
-          Contact::augmented_pressure(k.contact_pressure, state.pairing.gap(k.position), r_n));
+      const bool in_contact = status(state, k);
       if (in_contact != state.in_contact)
         {
           ++changes;
@@ -629,6 +726,11 @@ namespace StabilizedLagrangian
   template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                              \
   template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);                \
   template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);    \
+  template bool ContactProblem<dim>::with_loop_folded(Parameters::LoopMethod &,                    \
+                                                      const std::function<bool()> &);              \
+  template std::vector<bool> ContactProblem<dim>::contact_statuses() const;                        \
+  template unsigned int      ContactProblem<dim>::earlier_statuses(                                \
+      const std::vector<std::vector<bool>> &) const;                                          \
   template bool ContactProblem<dim>::newton_loop(                                                  \
       StepStatistics &, unsigned int, unsigned int, unsigned int);                                 \
   template void ContactProblem<dim>::line_search(                                                  \

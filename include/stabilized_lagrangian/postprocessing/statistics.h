@@ -37,17 +37,22 @@ namespace StabilizedLagrangian
     double       final_residual      = 0.; ///< in N
     double       final_scaled        = 0.; ///< largest scaled block
     /** Newton iterations of the attempts that failed and were cut (not in newton_iterations) */
-    unsigned int                 failed_newton_iterations = 0;
-    unsigned int                 assemblies               = 0; ///< all attempts
-    unsigned int                 jacobians                = 0; ///< all attempts
-    unsigned int                 contact_points           = 0;
-    unsigned int                 points_in_contact        = 0;
-    unsigned int                 points_stick             = 0;
-    unsigned int                 points_slip              = 0;
-    double                       normal_force             = 0.;
-    double                       tangential_force         = 0.;
-    std::array<double, 3>        contact_force            = {{0., 0., 0.}};
-    double                       wall_time                = 0.;
+    unsigned int          failed_newton_iterations = 0;
+    unsigned int          assemblies               = 0; ///< all attempts
+    unsigned int          jacobians                = 0; ///< all attempts
+    unsigned int          contact_points           = 0;
+    unsigned int          points_in_contact        = 0;
+    unsigned int          points_stick             = 0;
+    unsigned int          points_slip              = 0;
+    double                normal_force             = 0.;
+    double                tangential_force         = 0.;
+    std::array<double, 3> contact_force            = {{0., 0., 0.}};
+    /** fixed-point loops that cycled or did not converge and were folded into Newton */
+    unsigned int folded_loops = 0;
+    /** points in contact that break the law they report (Contact::FrictionLawCheck) */
+    unsigned int                 friction_law_violations = 0;
+    std::string                  friction_law_report; ///< what broke it, where; empty if nothing
+    double                       wall_time = 0.;
     std::vector<InnerLoopRecord> inner_loops;
   };
 

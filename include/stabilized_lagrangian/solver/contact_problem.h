@@ -32,6 +32,7 @@
 #include <stabilized_lagrangian/solver/linear_solver.h>
 
 #include <algorithm>
+#include <functional>
 
 namespace StabilizedLagrangian
 {
@@ -501,12 +502,38 @@ namespace StabilizedLagrangian
      */
     void
     refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    /** Warn when a prescribed displacement is not zero at t = 0 (applied whole in step 1). */
+    void
+    warn_if_dirichlet_not_ramped() const;
+    /** Warn when a material is nearly incompressible for the displacement degree (locking). */
+    void
+    warn_if_pair_locks() const;
     /** Warn when most of the body starts behind the rigid obstacle's surface. */
     void
     warn_if_body_behind_obstacle() const;
+    /** The contact status χ of seed eq. (5) at a point, a gap within touching_gap counting as 0. */
+    bool
+    status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
     double
     threshold_pressure(double contact_pressure) const;
+    /**
+     * Run @p solve with the loop whose method is @p method folded into the
+     * generalized Newton, then restore the method chosen: the fallback of a
+     * fixed point that cycles or does not converge in its iterations.
+     */
+    bool
+    with_loop_folded(Parameters::LoopMethod &method, const std::function<bool()> &solve);
+    /** The contact status χ of this rank's contact points. */
+    std::vector<bool>
+    contact_statuses() const;
+    /**
+     * Collective: the first of @p seen (the statuses at the start of each
+     * status iteration) equal to its last on every rank, or the index of the
+     * last one if none is.
+     */
+    unsigned int
+    earlier_statuses(const std::vector<std::vector<bool>> &seen) const;
     /** Whether @p method folds its loop into the generalized Newton. */
     static bool
     folded(const Parameters::LoopMethod method)
@@ -544,9 +571,11 @@ namespace StabilizedLagrangian
     Parameters::BoundaryConditions<dim> boundary_conditions;
     Parameters::LoadStepping            load_stepping;
     Parameters::NonlinearSolver         solver_parameters;
-    Parameters::LinearSolver            linear_solver_parameters;
-    Parameters::AdaptiveRefinement      adaptive_refinement;
-    Parameters::Output                  output_parameters;
+    /** why the run must stop rather than cut the load step (empty: it may cut) */
+    std::string                    unrecoverable_failure;
+    Parameters::LinearSolver       linear_solver_parameters;
+    Parameters::AdaptiveRefinement adaptive_refinement;
+    Parameters::Output             output_parameters;
 
     std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
@@ -607,6 +636,8 @@ namespace StabilizedLagrangian
      * friction threshold sees zero there (threshold_pressure())
      */
     double negligible_pressure = 0.;
+    /** |g_n| at most this counts as touching in the status test (round-off of the coordinates) */
+    double touching_gap = 0.;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     bool                          dirichlet_predictor = false;

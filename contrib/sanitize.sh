@@ -1,0 +1,206 @@
+#!/bin/bash
+# Build with AddressSanitizer + UndefinedBehaviorSanitizer outside the source
+# tree and run the ctest suite (or a subset) under them; then summarise the
+# sanitizer reports, per test.
+#
+#   contrib/sanitize.sh [BUILD_DIR] [ctest selection, e.g. -R 'hertz|stick']
+#
+# BUILD_DIR defaults to ${SL_SANITIZE_BUILD:-/tmp/sl-sanitize-build} and must
+# lie outside the source tree. Environment: SL_SANITIZE_JOBS (make -j, 1),
+# SL_SANITIZE_TIMEOUT (ctest timeout per test in s, 7200), SL_SANITIZE_LEAKS=1
+# (turn LeakSanitizer on, with the third-party suppressions below),
+# SL_SANITIZE_CXXFLAGS (replaces the sanitizer compile flags),
+# SL_SANITIZE_SOURCE: what is built and tested --
+#   copy (default)  a copy of the working tree, taken at the start into
+#                   BUILD_DIR/source, so edits made while it builds and runs
+#                   (a header changed half-way) cannot mix two versions;
+#   tree            the working tree itself;
+#   <git revision>  e.g. HEAD: that commit, by `git archive`, into BUILD_DIR/source.
+# Report paths are given relative to the source tree (source/..., include/...).
+#
+# Choices:
+# - Release deal.II (libdeal.ii.so, CMAKE_BUILD_TYPE=Release). The Debian
+#   package also has libdeal.ii.g.so, but its Debug flavour compiles our code
+#   at -O0 with deal.II's Asserts on and is several times slower again; the
+#   sanitizers are the point here. deal.II, Trilinos, MPI, ... are not
+#   instrumented: only our code (and the deal.II/Trilinos header templates
+#   compiled into it) is checked.
+# - deal_ii_setup_target() adds deal.II's own flags (-O2 -funroll-loops ...)
+#   as target options, i.e. after CMAKE_CXX_FLAGS, so a -O1 there would lose.
+#   A compiler launcher generated in BUILD_DIR appends -O1 last instead (the
+#   sanitizer flags themselves go through CMAKE_CXX_FLAGS and the linker
+#   flags; `make VERBOSE=1` shows the result).
+# - detect_leaks=0: Open MPI (and its PMIx/hwloc/UCX components), Trilinos'
+#   static registries and deal.II's MPI/p4est set-up leave memory allocated at
+#   exit on purpose, which would fail every run. SL_SANITIZE_LEAKS=1 turns LSan
+#   on with a suppressions file for those third-party libraries only.
+# - halt_on_error=1, abort_on_error=0: the first report ends the process with
+#   exit code 1 (not a core dump); log_path collects the reports in files,
+#   since most Python tests only look at exit codes and print the program's
+#   output only on failure.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tree_dir=$(pwd -P)
+
+build_dir=${SL_SANITIZE_BUILD:-/tmp/sl-sanitize-build}
+if [[ $# -gt 0 && $1 != -* ]]; then
+  build_dir=$1
+  shift
+fi
+build_dir=$(realpath -m "$build_dir")
+case "$build_dir/" in
+  "$tree_dir"/*) echo "sanitize.sh: $build_dir is inside the source tree; choose another" >&2
+                   exit 2 ;;
+esac
+mkdir -p "$build_dir"
+source_mode=${SL_SANITIZE_SOURCE:-copy}
+if [[ $source_mode == tree ]]; then
+  source_dir=$tree_dir
+else
+  source_dir=$build_dir/source
+  rm -rf "$source_dir"
+  mkdir -p "$source_dir"
+  if [[ $source_mode == copy ]]; then
+    # mtimes kept, so a rebuild stays incremental
+    tar -C "$tree_dir" --exclude='./build*' --exclude=./.git --exclude='./output*' \
+        --exclude='__pycache__' -cf - . | tar -C "$source_dir" -xf -
+  else
+    git -C "$tree_dir" archive "$source_mode" | tar -C "$source_dir" -xf -
+  fi
+fi
+echo "sanitize.sh: building $source_mode ($source_dir) in $build_dir"
+jobs=${SL_SANITIZE_JOBS:-1}
+test_timeout=${SL_SANITIZE_TIMEOUT:-7200}
+sanitize_flags=${SL_SANITIZE_CXXFLAGS:-"-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"}
+link_flags="-fsanitize=address,undefined"
+
+# --- build -----------------------------------------------------------------
+support=$build_dir/sanitize
+mkdir -p "$support"
+cat > "$support/cxx-launcher.sh" <<'EOF'
+#!/bin/sh
+# CMAKE_CXX_COMPILER_LAUNCHER: deal.II's target flags contain -O2; the last -O wins.
+exec "$@" -O1
+EOF
+chmod +x "$support/cxx-launcher.sh"
+
+build_start=$SECONDS
+# a cache made from another source directory (another SL_SANITIZE_SOURCE) is refused by cmake
+if [[ -f $build_dir/CMakeCache.txt ]] &&
+   ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$source_dir" "$build_dir/CMakeCache.txt"; then
+  rm -rf "$build_dir/CMakeCache.txt" "$build_dir/CMakeFiles"
+fi
+cmake -S "$source_dir" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_CXX_FLAGS="$sanitize_flags" \
+      -DCMAKE_EXE_LINKER_FLAGS="$link_flags" -DCMAKE_SHARED_LINKER_FLAGS="$link_flags" \
+      -DCMAKE_CXX_COMPILER_LAUNCHER="$support/cxx-launcher.sh"
+cmake --build "$build_dir" -j"$jobs"
+build_time=$((SECONDS - build_start))
+
+# --- suppressions (third-party libraries only) ------------------------------
+cat > "$support/lsan.supp" <<'EOF'
+# used only with SL_SANITIZE_LEAKS=1: allocations these libraries keep until exit
+leak:libmpi.so
+leak:libopen-pal.so
+leak:libopen-rte.so
+leak:libpmix.so
+leak:libhwloc.so
+leak:libucs.so
+leak:libucp.so
+leak:libtrilinos_
+leak:libdeal.ii
+leak:libmumps
+leak:libp4est
+leak:libsc-
+leak:libgmsh.so
+leak:libtbb
+EOF
+cat > "$support/ubsan.supp" <<'EOF'
+# UBSan checks run only in instrumented code (ours, and header templates compiled
+# into it); nothing suppressed so far.
+EOF
+
+# --- tests -----------------------------------------------------------------
+logs=$build_dir/sanitizer-logs
+rm -rf "$logs"
+mkdir -p "$logs"
+cd "$build_dir"
+mapfile -t tests < <(ctest -N "$@" | sed -n 's/^ *Test *#[0-9]*: *//p')
+if [[ ${#tests[@]} -eq 0 ]]; then
+  echo "sanitize.sh: no test selected by: $*" >&2
+  exit 2
+fi
+leaks=0
+[[ ${SL_SANITIZE_LEAKS:-0} == 1 ]] && leaks=1
+
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export LSAN_OPTIONS="suppressions=$support/lsan.supp:print_suppressions=1"
+results=()
+tests_start=$SECONDS
+for t in "${tests[@]}"; do
+  mkdir -p "$logs/$t"
+  start=$SECONDS
+  status=passed
+  if ! ASAN_OPTIONS="detect_leaks=$leaks:halt_on_error=1:abort_on_error=0:check_initialization_order=1:log_path=$logs/$t/asan" \
+       UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$support/ubsan.supp:log_path=$logs/$t/ubsan" \
+       ctest -R "^${t}\$" --output-on-failure --timeout "$test_timeout" > "$logs/$t/ctest.log" 2>&1; then
+    status=FAILED
+    if grep -q "\*\*\*Timeout" "$logs/$t/ctest.log"; then
+      status=TIMEOUT          # ctest's limit
+    elif grep -q "TimeoutExpired\|still running after" "$logs/$t/ctest.log"; then
+      status=TIMEOUT-RUN      # a run's own limit inside the Python test
+    fi
+  fi
+  results+=("$t $status $((SECONDS - start))")
+  printf '%-26s %-11s %5d s\n' "$t" "$status" $((SECONDS - start))
+done
+tests_time=$((SECONDS - tests_start))
+
+# --- summary ---------------------------------------------------------------
+echo
+echo "=== sanitizer summary (build $build_dir) ==="
+echo "build: ${build_time} s, tests: ${tests_time} s, ctest timeout ${test_timeout} s per test"
+echo "LeakSanitizer: $([[ $leaks == 1 ]] && echo "on, suppressed: $(grep -v '^#' "$support/lsan.supp" | tr '\n' ' ')" || echo off)"
+echo "UBSan suppressions: $(grep -vc '^#' "$support/ubsan.supp" || true) entries"
+printf '%s\n' "${results[@]}" > "$logs/results.txt"
+cat > "$support/summarize.py" <<'EOF'
+import collections, glob, os, re, sys
+logs, source, results = sys.argv[1:4]
+patterns = re.compile(r"ERROR: AddressSanitizer|runtime error:|LeakSanitizer")
+frame = re.compile(r"^\s*#(\d+) 0x[0-9a-f]+ (?:in (.*) )?(\S+)$")
+ours = re.compile(re.escape(source) + r"/(source|include|tests)/")
+distinct = collections.OrderedDict()
+for line in open(results):
+    name, status, seconds = line.split()
+    files = sorted(glob.glob(os.path.join(logs, name, "asan.*")) +
+                   glob.glob(os.path.join(logs, name, "ubsan.*")))
+    hits = [f for f in files if patterns.search(open(f, errors="replace").read())]
+    ctest_log = open(os.path.join(logs, name, "ctest.log"), errors="replace").read()
+    in_output = len(patterns.findall(ctest_log))
+    print(f"{name:26s} {status:11s} {seconds:>5s} s  reports: {len(hits)} files"
+          + (f", {in_output} lines in the test output" if in_output else ""))
+    for f in hits:
+        text = open(f, errors="replace").read()
+        head = next((l for l in text.splitlines() if patterns.search(l)), "")
+        frames = [m for m in (frame.match(l) for l in text.splitlines()) if m]
+        top = next((m.group(3) for m in frames if ours.search(m.group(3))), "(no frame in our code)")
+        kind = re.sub(r"0x[0-9a-f]+|==\d+==|\(pid=\d+\)", "", head).strip()
+        key = (re.sub(r":\d+$", "", kind), top.replace(source + "/", ""))
+        if key not in distinct:
+            distinct[key] = (f, [], text)
+        distinct[key][1].append(name)
+print()
+print(f"{len(distinct)} distinct report(s)")
+for (kind, top), (f, names, text) in distinct.items():
+    print(f"--- {kind}\n    our top frame: {top}\n    tests: {' '.join(sorted(set(names)))}\n    e.g. {f}")
+    shown = 0
+    for l in text.splitlines():
+        if frame.match(l) and shown < 15:
+            print("   ", l.strip())
+            shown += 1
+        elif shown >= 15 or (shown and not l.strip()):
+            break
+EOF
+python3 "$support/summarize.py" "$logs" "$source_dir" "$logs/results.txt"
+failed=$(printf '%s\n' "${results[@]}" | awk '$2 != "passed"' | wc -l)
+echo "$failed of ${#tests[@]} test(s) not passed; logs in $logs"

@@ -1,0 +1,49 @@
+#!/usr/bin/python3
+"""Scenes that run but not as the user meant are named in a warning.
+
+- Volumetric locking: the patin (Q1/P1) with nu = 0.4999 (K = 3333 G) is far too
+  stiff; the run must warn, naming the material's subsection and the pair; with
+  nu = 0.3, or with Q2 displacements at nu = 0.49, it must not.
+- A prescribed displacement not zero at t = 0 (`0; -0.015`, constant in t) is
+  applied whole in the first step, and cutting that step cannot reduce it: the
+  run must warn, naming the entry; and r_t = automatic must take the length of
+  that first increment (0.015 mm), not the mesh size."""
+import os
+import re
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "patin_elastic.prm")) as f:
+    patin = f.read()
+fast = sltest.nested_set("Geometry/block/Global refinements", 2) + \
+    sltest.nested_set("Load stepping/Number of load steps", 2)
+
+
+def run(name, text):
+    code, log = sltest.run(executable, text + fast + sltest.QUIET_OUTPUT, f"{workdir}/{name}",
+                           expect_success=False)
+    check(code == 0, f"{name}: exit code {code}")
+    return log
+
+
+for name, nu, pair, warned in (("Q1 nu=0.4999", 0.4999, "Q1/P1", True),
+                               ("Q1 nu=0.3", 0.3, "Q1/P1", False),
+                               ("Q2 nu=0.49", 0.49, "Q2/P1", False)):
+    log = run(name.replace(" ", "_"), patin.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {nu}")
+              .replace("set Finite element pair  = Q1/P1", f"set Finite element pair  = {pair}"))
+    said = "locks volumetrically" in log
+    check(said == warned and (not warned or ("WARNING: Material:" in log and pair in log)),
+          f"{name}: locking warning {'given, naming Material and ' + pair if warned else 'absent'} ({said})")
+
+log = run("constant_dirichlet",
+          patin.replace("if(t < 0.5, 0, u0*(t - 0.5)/0.5); -u0*min(t/0.5, 1)", "0; -0.015"))
+check("WARNING: Boundary conditions/Dirichlet 1/Displacement: the prescribed displacement is not "
+      "zero at t = 0" in log, "constant Dirichlet: warning naming the entry")
+match = re.search(r"r_t = automatic: .* \(l = ([0-9.e+-]+) mm", log)
+check(match is not None and abs(float(match.group(1)) - 0.015) < 1e-12,
+      f"constant Dirichlet: r_t's length is the first increment 0.015 mm ({match.group(1) if match else None})")
+log = run("ramped_dirichlet", patin)
+check("not zero at t = 0" not in log, "ramped Dirichlet: no warning")
+check.finish()

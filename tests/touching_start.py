@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""A body meant to rest on the obstacle, placed within round-off of it.
+
+A half cylinder (radius 50) pressed by a traction on its flat top (held in x
+there) onto a rigid plane, μ = 0.3: with the plane 1e-14 mm below its lowest
+vertex, that vertex must start in contact exactly as when it touches (the plane
+at 0): same loop counts, same forces. (It used to start open: 11 status
+iterations in the first step instead of 5, and users met Newton stalling.)
+Both with the nodal (Gauss-Lobatto) and the Gauss contact quadrature."""
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+SCENE = """
+set Dimension = 2
+subsection Geometry
+  set Model = half ball
+  subsection half ball
+    set Radius                  = 50
+    set Global refinements      = 3
+    set Local refinements       = 3
+    set Local refinement radius = 10
+    set Contact zone radius     = 20
+  end
+end
+subsection Obstacle
+  set Model = plane
+  subsection plane
+    set Point  = 0, @Y@
+    set Normal = 0, 1
+  end
+end
+subsection Material
+  set Model = linear elastic
+  subsection linear elastic
+    set Young's modulus = 200000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Contact
+  set Contact boundary ids = 2
+  set Contact quadrature   = @QUADRATURE@
+  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = 0.3
+    end
+  end
+end
+subsection Boundary conditions
+  subsection Dirichlet 1
+    set Boundary id = 3
+    set Components  = x
+    subsection Displacement
+      set Function expression = 0; 0
+    end
+  end
+  subsection Neumann 1
+    set Boundary id = 3
+    subsection Traction
+      set Function expression = 0; -100*t
+    end
+  end
+end
+subsection Load stepping
+  set Number of load steps = 2
+end
+"""
+COLUMNS = ("geometry_iterations", "friction_iterations", "status_iterations", "newton_iterations",
+           "points_in_contact", "points_stick", "points_slip")
+for quadrature in ("Gauss-Lobatto", "Gauss"):
+    runs = {}
+    for y in ("0", "-1e-14"):
+        out = f"{workdir}/{quadrature}-{y}"
+        code, log = sltest.run(executable, SCENE.replace("@Y@", y).replace("@QUADRATURE@", quadrature) +
+                               sltest.QUIET_OUTPUT, out, expect_success=False)
+        check(code == 0, f"{quadrature}, plane at y = {y}: exit code {code}")
+        runs[y] = sltest.read_csv(out + "/output/statistics.csv") if code == 0 else []
+    touching, above = runs["0"], runs["-1e-14"]
+    check(len(touching) == len(above) == 2, f"{quadrature}: both runs take the 2 load steps")
+    for a, b in zip(touching, above):
+        same = all(a[c] == b[c] for c in COLUMNS)
+        check(same, f"{quadrature} step {a['step']:.0f}: loop counts and statuses equal "
+                    f"(status iterations {b['status_iterations']:.0f} vs {a['status_iterations']:.0f})")
+        # force control: F_n is the applied load in both; the check is that both carry it
+        check(abs(a["normal_force_N"] - b["normal_force_N"]) <= 1e-8 * a["normal_force_N"],
+              f"{quadrature} step {a['step']:.0f}: F_n {b['normal_force_N']:.6f} = {a['normal_force_N']:.6f}")
+check.finish()
