@@ -63,7 +63,9 @@ Output goes to the directory of the entry Output/Output directory.
         problem.run_inf_sup_test(inf_sup_meshes);
         return 0;
       }
-    return problem.run(resume) ? 0 : 2;
+    if (problem.run(resume))
+      return 0;
+    return problem.stopped_at_wall_time_limit() ? 3 : 2;
   }
 } // namespace
 

@@ -352,6 +352,14 @@ namespace StabilizedLagrangian
                         "halved this many times; after a converged step the step doubles back "
                         "towards the nominal one. A failure at the smallest step ends the run "
                         "(exit code 2).");
+      prm.declare_entry("Wall time limit",
+                        "0",
+                        Patterns::Double(0.),
+                        "Seconds of wall time after which the run stops cleanly at the end of "
+                        "the load step that passes it (exit code 3), the results of the "
+                        "converged steps kept; with `Output/Checkpoint interval` > 0 it writes a "
+                        "checkpoint first, so that `--resume` continues the run. After the first "
+                        "step the log warns when the load path will not fit. 0: no limit.");
       prm.leave_subsection();
     }
 
@@ -359,9 +367,10 @@ namespace StabilizedLagrangian
     LoadStepping::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Load stepping");
-      end_time = prm.get_double("End time");
-      n_steps  = prm.get_integer("Number of load steps");
-      max_cuts = prm.get_integer("Maximum step cuts");
+      end_time        = prm.get_double("End time");
+      n_steps         = prm.get_integer("Number of load steps");
+      max_cuts        = prm.get_integer("Maximum step cuts");
+      wall_time_limit = prm.get_double("Wall time limit");
       if (!(end_time > 0.))
         throw InputError("Load stepping/End time must be > 0.");
       prm.leave_subsection();
@@ -536,18 +545,18 @@ namespace StabilizedLagrangian
                         "true",
                         Patterns::Bool(),
                         "Write a contact-surface profile .csv per load step.");
-      prm.declare_entry(
-          "Checkpoint interval",
-          "0",
-          Patterns::Integer(0),
-          "Load steps between checkpoints (0: none). A checkpoint (directory "
-          "`checkpoint` in the output directory, replaced atomically) holds the "
-          "mesh with its refinements, the solution, the multipliers, the contact "
-          "points' states, the material history, the step controller and the "
-          "statistics; `stabilized_lagrangian --resume input.prm` continues from "
-          "it on the same number of MPI ranks. Between a resume and its "
-          "checkpoint only `Load stepping/End time`, the `Output` entries "
-          "other than the directory and `Linear solver/Threads per rank` may change.");
+      prm.declare_entry("Checkpoint interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Load steps between checkpoints (0: none). A checkpoint (directory "
+                        "`checkpoint` in the output directory, replaced atomically) holds the "
+                        "mesh with its refinements, the solution, the multipliers, the contact "
+                        "points' states, the material history, the step controller and the "
+                        "statistics; `stabilized_lagrangian --resume input.prm` continues from "
+                        "it on the same number of MPI ranks. Between a resume and its "
+                        "checkpoint only `Load stepping/End time` and `Wall time limit`, the "
+                        "`Output` entries other than the directory and `Linear solver/Threads per "
+                        "rank` may change.");
       prm.declare_entry("Log Newton iterations",
                         "false",
                         Patterns::Bool(),

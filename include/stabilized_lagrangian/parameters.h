@@ -142,6 +142,7 @@ namespace StabilizedLagrangian
       double       end_time;
       unsigned int n_steps;
       unsigned int max_cuts;
+      double       wall_time_limit = 0.; ///< s; 0: none
 
       static void
       declare_parameters(ParameterHandler &prm);

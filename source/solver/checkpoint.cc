@@ -172,7 +172,8 @@ namespace StabilizedLagrangian
     bool
     may_change_on_resume(const std::string &entry)
     {
-      return entry == "Load stepping/End time" || entry == "Linear solver/Threads per rank" ||
+      return entry == "Load stepping/End time" || entry == "Load stepping/Wall time limit" ||
+             entry == "Linear solver/Threads per rank" ||
              (entry.rfind("Output/", 0) == 0 && entry != "Output/Output directory");
     }
   } // namespace
@@ -312,11 +313,12 @@ namespace StabilizedLagrangian
         const auto        found  = saved.find(entry);
         const std::string before = found == saved.end() ? "(not declared)" : found->second;
         if (before != value && !may_change_on_resume(entry))
-          throw InputError("--resume: the entry " + entry + " is '" + value +
-                           "', the checkpoint was written with '" + before +
-                           "'. A resume may change only Load stepping/End time, the Output "
-                           "entries other than the directory and Linear solver/Threads per "
-                           "rank; run from the start for other changes.");
+          throw InputError(
+              "--resume: the entry " + entry + " is '" + value +
+              "', the checkpoint was written with '" + before +
+              "'. A resume may change only Load stepping/End time and Wall time limit, "
+              "the Output entries other than the directory and Linear "
+              "solver/Threads per rank; run from the start for other changes.");
       }
 
     Reader      in(read_whole(path), path);

@@ -80,6 +80,12 @@ namespace StabilizedLagrangian
     return true;
   }
 
+  namespace
+  {
+    /** A load path projected to need more than a day is worth a warning. */
+    constexpr double seconds_to_warn_of = 24. * 3600.;
+  } // namespace
+
   template <int dim>
   bool
   ContactProblem<dim>::solve_load_path(const bool resumed)
@@ -133,9 +139,15 @@ namespace StabilizedLagrangian
     unsigned int &step          = controller.step;
     double       &step_size     = controller.step_size;
     Timer         wall_clock;
-    WorkCounters  at_step_start = work;
+    const double  path_start_time = time;
+    WorkCounters  at_step_start   = work;
     // the most contact points in contact in any step, and their number
     unsigned int most_points_in_contact = 0, contact_point_count = 0;
+    const auto   work_on_path = [&]() {
+      return WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
+                          work.assemblies - path_start_work.assemblies,
+                          work.jacobians - path_start_work.jacobians};
+    };
     // steps whose state breaks the friction law (the first few are named)
     unsigned int friction_law_warnings = 0;
     while (time < load_stepping.end_time * (1. - 1e-12))
@@ -216,10 +228,44 @@ namespace StabilizedLagrangian
                 << "; column friction_law_violations of statistics.csv"
                 << (friction_law_warnings == 3 ? " (no further warnings)" : "") << ".\n";
         // grow back towards the nominal step after a cut
-        step_size = std::min(2. * step_size, nominal_step);
-        if (output_parameters.checkpoint_interval > 0 &&
-            step % output_parameters.checkpoint_interval == 0)
+        step_size               = std::min(2. * step_size, nominal_step);
+        const bool checkpointed = output_parameters.checkpoint_interval > 0 &&
+                                  step % output_parameters.checkpoint_interval == 0;
+        if (checkpointed)
           write_checkpoint();
+        // the slowest rank's clock, so that every rank stops at the same step
+        const double elapsed = Utilities::MPI::max(run_clock.wall_time(), mpi_communicator);
+        // the load path's own pace (setup and earlier cycles left out)
+        const double needed = Utilities::MPI::max(wall_clock.wall_time(), mpi_communicator) /
+                              (time - path_start_time) * (load_stepping.end_time - path_start_time);
+        const double limit = load_stepping.wall_time_limit;
+        if (step == 1 && limit > 0. && needed > limit)
+          pcout << "WARNING: at the pace of the first load step the load path needs ~" << needed
+                << " s, more than `Load stepping/Wall time limit` = " << limit
+                << " s: the run will stop at the limit before its end.\n";
+        if (step == 1 && limit == 0. && needed > seconds_to_warn_of)
+          pcout << "WARNING: at the pace of the first load step the load path needs ~"
+                << needed / 3600. << " h. Consider fewer load steps, or a `Load stepping/Wall "
+                << "time limit` with checkpoints (`Output/Checkpoint interval`).\n";
+        if (limit > 0. && time < load_stepping.end_time * (1. - 1e-12))
+          {
+            if (elapsed > limit)
+              {
+                if (output_parameters.checkpoint_interval > 0 && !checkpointed)
+                  write_checkpoint();
+                pcout << "Stopped at the wall-time limit (Load stepping/Wall time limit = "
+                      << load_stepping.wall_time_limit << " s) after load step " << step
+                      << " at t = " << time << ", " << elapsed << " s into the run. The results "
+                      << "of the " << step << " converged steps are in "
+                      << output_parameters.directory
+                      << (output_parameters.checkpoint_interval > 0
+                              ? "; `--resume` continues from the checkpoint written now.\n"
+                              : "; with `Output/Checkpoint interval` > 0 it could be resumed.\n");
+                wall_time_limit_reached = true;
+                write_run_summary(step, wall_clock.wall_time(), work_on_path());
+                return false;
+              }
+          }
       }
     std::ostringstream mean;
     mean << std::fixed << std::setprecision(2)
@@ -238,11 +284,7 @@ namespace StabilizedLagrangian
                "towards the body?\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
-    write_run_summary(step,
-                      wall_clock.wall_time(),
-                      WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
-                                   work.assemblies - path_start_work.assemblies,
-                                   work.jacobians - path_start_work.jacobians});
+    write_run_summary(step, wall_clock.wall_time(), work_on_path());
     return true;
   }
 

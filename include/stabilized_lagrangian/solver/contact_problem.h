@@ -130,6 +130,13 @@ namespace StabilizedLagrangian
     bool
     run(const bool resume = false);
 
+    /** @brief Whether run() stopped at `Load stepping/Wall time limit` (not a failure). */
+    bool
+    stopped_at_wall_time_limit() const
+    {
+      return wall_time_limit_reached;
+    }
+
     /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points. */
     void
     setup();
@@ -571,6 +578,9 @@ namespace StabilizedLagrangian
     Parameters::BoundaryConditions<dim> boundary_conditions;
     Parameters::LoadStepping            load_stepping;
     Parameters::NonlinearSolver         solver_parameters;
+    /** wall time since the problem was built, for `Load stepping/Wall time limit` */
+    Timer run_clock;
+    bool  wall_time_limit_reached = false;
     /** why the run must stop rather than cut the load step (empty: it may cut) */
     std::string                    unrecoverable_failure;
     Parameters::LinearSolver       linear_solver_parameters;
