@@ -17,6 +17,8 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -268,8 +270,27 @@ namespace StabilizedLagrangian
           value = triangulation.locally_owned_subdomain();
         data_out.add_data_vector(subdomain, "subdomain");
         data_out.build_patches(fe_pair->displacement_degree());
-        const std::string record = data_out.write_vtu_with_pvtu_record(
-            directory + "/", "solution", step, mpi_communicator, 5, 0);
+        std::string record;
+        try
+          {
+            record = data_out.write_vtu_with_pvtu_record(
+                directory + "/", "solution", step, mpi_communicator, 5, 0);
+          }
+        catch (const std::exception &)
+          {
+            const int error = errno;
+            // no half-written piece of this step is left behind
+            const std::string stem = "solution_" + Utilities::int_to_string(step, 5);
+            if (root)
+              for (const auto &entry : std::filesystem::directory_iterator(directory))
+                if (entry.path().filename().string().rfind(stem, 0) == 0)
+                  std::filesystem::remove(entry.path());
+            throw std::runtime_error(
+                "cannot write the solution of step " + std::to_string(step) + " (" + stem +
+                ".pvtu) into " + directory + ": " + SafeFiles::free_space_note(directory) +
+                (error != 0 ? std::string(" (the system says: ") + std::strerror(error) + ")"
+                            : std::string()));
+          }
         // the .pvd lists a step only once every rank's piece is complete
         MPI_Barrier(mpi_communicator);
         pvd_records.emplace_back(t, record);
@@ -360,8 +381,8 @@ namespace StabilizedLagrangian
               const std::string name = entry.path().filename().string();
               if (!is_run_output(name))
                 continue;
-              const bool owned_directory = name.rfind("cycle-", 0) == 0 ||
-                                           name.rfind("checkpoint", 0) == 0;
+              const bool owned_directory =
+                  name.rfind("cycle-", 0) == 0 || name.rfind("checkpoint", 0) == 0;
               if (entry.is_directory() && !owned_directory)
                 throw std::runtime_error(entry.path().string() +
                                          " is a directory, where the run writes a file");

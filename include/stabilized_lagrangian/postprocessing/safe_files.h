@@ -31,5 +31,13 @@ namespace StabilizedLagrangian
      */
     void
     truncate(const std::string &path, const unsigned long size);
+
+    /**
+     * @brief Why a write into @p directory may have failed, for messages: "no
+     * space left on the device" when its file system is (nearly) full, else
+     * "not writable, or an input/output error".
+     */
+    std::string
+    free_space_note(const std::string &directory);
   } // namespace SafeFiles
 } // namespace StabilizedLagrangian
