@@ -34,6 +34,14 @@
 #   static registries and deal.II's MPI/p4est set-up leave memory allocated at
 #   exit on purpose, which would fail every run. SL_SANITIZE_LEAKS=1 turns LSan
 #   on with a suppressions file for those third-party libraries only.
+# - BUILD_DIR/sanitize/shim.c, linked into this build's executables only:
+#   (1) ASan reserves terabytes of address space at start-up (shadow memory),
+#   so the meshing child's RLIMIT_AS (gmsh_mesh.cc) would make each of its
+#   mmaps fail ("ERROR: Failed to mmap": every .geo scene fails); its
+#   setrlimit() counts RLIMIT_AS on top of what is already mapped. (2) GCC's
+#   libasan and libubsan each have their own report file, and with both
+#   linked UBSan ignores UBSAN_OPTIONS=log_path (it writes to stderr); a
+#   constructor hands that path to libubsan.
 # - halt_on_error=1, abort_on_error=0: the first report ends the process with
 #   exit code 1 (not a core dump); log_path collects the reports in files,
 #   since most Python tests only look at exit codes and print the program's
@@ -84,6 +92,71 @@ exec "$@" -O1
 EOF
 chmod +x "$support/cxx-launcher.sh"
 
+cat > "$support/shim.c" <<'EOF'
+/* Linked into the sanitizer build's executables (see sanitize.sh). */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+static rlim_t mapped_bytes(void)
+{
+  char buffer[4096];
+  const int fd = open("/proc/self/status", O_RDONLY);
+  if (fd < 0)
+    return 0;
+  const ssize_t n = read(fd, buffer, sizeof buffer - 1);
+  close(fd);
+  if (n <= 0)
+    return 0;
+  buffer[n] = 0;
+  const char *size = strstr(buffer, "VmSize:");
+  return size ? (rlim_t)strtoull(size + 7, NULL, 10) * 1024 : 0;
+}
+
+/* RLIMIT_AS is counted on top of the address space already mapped (ASan's shadow). */
+int setrlimit(__rlimit_resource_t resource, const struct rlimit *limit)
+{
+  struct rlimit adjusted = *limit;
+  if (resource == RLIMIT_AS)
+    {
+      const rlim_t mapped = mapped_bytes();
+      if (adjusted.rlim_cur != RLIM_INFINITY)
+        adjusted.rlim_cur += mapped;
+      if (adjusted.rlim_max != RLIM_INFINITY)
+        adjusted.rlim_max += mapped;
+    }
+  return syscall(SYS_prlimit64, 0, resource, &adjusted, NULL) == 0 ? 0 : -1;
+}
+
+/* UBSAN_OPTIONS=log_path, which libubsan ignores when libasan is loaded too. */
+__attribute__((constructor)) static void ubsan_log_path(void)
+{
+  const char *options = getenv("UBSAN_OPTIONS");
+  const char *start   = options ? strstr(options, "log_path=") : NULL;
+  void       *ubsan   = dlopen("libubsan.so.1", RTLD_NOW | RTLD_NOLOAD);
+  if (!start || !ubsan)
+    return;
+  start += strlen("log_path=");
+  char         path[4096];
+  const size_t n = strcspn(start, ":");
+  if (n >= sizeof path)
+    return;
+  memcpy(path, start, n);
+  path[n] = 0;
+  /* libubsan's own copy, not libasan's, which the executable would bind to */
+  void (*set_report_path)(const char *) =
+    (void (*)(const char *))dlsym(ubsan, "__sanitizer_set_report_path");
+  if (set_report_path)
+    set_report_path(path);
+}
+EOF
+cc -O1 -g -fPIC -Wall -c "$support/shim.c" -o "$support/shim.o"
+
 build_start=$SECONDS
 # a cache made from another source directory (another SL_SANITIZE_SOURCE) is refused by cmake
 if [[ -f $build_dir/CMakeCache.txt ]] &&
@@ -92,7 +165,7 @@ if [[ -f $build_dir/CMakeCache.txt ]] &&
 fi
 cmake -S "$source_dir" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS="$sanitize_flags" \
-      -DCMAKE_EXE_LINKER_FLAGS="$link_flags" -DCMAKE_SHARED_LINKER_FLAGS="$link_flags" \
+      -DCMAKE_EXE_LINKER_FLAGS="$link_flags $support/shim.o" -DCMAKE_SHARED_LINKER_FLAGS="$link_flags" \
       -DCMAKE_CXX_COMPILER_LAUNCHER="$support/cxx-launcher.sh"
 cmake --build "$build_dir" -j"$jobs"
 build_time=$((SECONDS - build_start))
@@ -164,42 +237,57 @@ echo "LeakSanitizer: $([[ $leaks == 1 ]] && echo "on, suppressed: $(grep -v '^#'
 echo "UBSan suppressions: $(grep -vc '^#' "$support/ubsan.supp" || true) entries"
 printf '%s\n' "${results[@]}" > "$logs/results.txt"
 cat > "$support/summarize.py" <<'EOF'
+"""Per test: status and number of sanitizer reports (in the log_path files and in the
+test's own output); then each distinct report (kind, our top frame) with its first frames."""
 import collections, glob, os, re, sys
 logs, source, results = sys.argv[1:4]
-patterns = re.compile(r"ERROR: AddressSanitizer|runtime error:|LeakSanitizer")
+# reports, and the sanitizer runtime's own failures
+report = re.compile(r"ERROR: AddressSanitizer|runtime error:|ERROR: LeakSanitizer|"
+                    r"ERROR: Failed to mmap|Sanitizer CHECK failed|AddressSanitizer failed")
 frame = re.compile(r"^\s*#(\d+) 0x[0-9a-f]+ (?:in (.*) )?(\S+)$")
 ours = re.compile(re.escape(source) + r"/(source|include|tests)/")
+
+
+def blocks(text):
+    """(first line, frames of its first stack) for each report in text"""
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        if report.search(line):
+            frames = []
+            for l in lines[i + 1:i + 200]:
+                if frame.match(l):
+                    frames.append(l.strip())
+                elif frames or report.search(l):
+                    break
+            yield line.strip(), frames
+
+
 distinct = collections.OrderedDict()
 for line in open(results):
     name, status, seconds = line.split()
-    files = sorted(glob.glob(os.path.join(logs, name, "asan.*")) +
-                   glob.glob(os.path.join(logs, name, "ubsan.*")))
-    hits = [f for f in files if patterns.search(open(f, errors="replace").read())]
-    ctest_log = open(os.path.join(logs, name, "ctest.log"), errors="replace").read()
-    in_output = len(patterns.findall(ctest_log))
-    print(f"{name:26s} {status:11s} {seconds:>5s} s  reports: {len(hits)} files"
-          + (f", {in_output} lines in the test output" if in_output else ""))
-    for f in hits:
-        text = open(f, errors="replace").read()
-        head = next((l for l in text.splitlines() if patterns.search(l)), "")
-        frames = [m for m in (frame.match(l) for l in text.splitlines()) if m]
-        top = next((m.group(3) for m in frames if ours.search(m.group(3))), "(no frame in our code)")
-        kind = re.sub(r"0x[0-9a-f]+|==\d+==|\(pid=\d+\)", "", head).strip()
-        key = (re.sub(r":\d+$", "", kind), top.replace(source + "/", ""))
+    found = []
+    for f in sorted(glob.glob(os.path.join(logs, name, "*san.*"))):
+        found += [(b, f) for b in blocks(open(f, errors="replace").read())]
+    n_files = len(found)
+    log = os.path.join(logs, name, "ctest.log")
+    found += [(b, log) for b in blocks(open(log, errors="replace").read())]
+    print(f"{name:26s} {status:11s} {seconds:>5s} s  sanitizer reports: {n_files} in log files"
+          + (f", {len(found) - n_files} in the test output" if len(found) > n_files else ""))
+    for (head, frames), where in found:
+        top = next((frame.match(l).group(3) for l in frames if ours.search(l)),
+                   "(no frame in our code)")
+        kind = re.sub(r"0x[0-9a-f]+|==\d+==|\(pid=\d+\)|^.*?(?=runtime error:)", "", head)
+        kind = re.sub(r"\s+", " ", kind).strip()
+        key = (kind, top.replace(source + "/", ""))
         if key not in distinct:
-            distinct[key] = (f, [], text)
-        distinct[key][1].append(name)
-print()
-print(f"{len(distinct)} distinct report(s)")
-for (kind, top), (f, names, text) in distinct.items():
-    print(f"--- {kind}\n    our top frame: {top}\n    tests: {' '.join(sorted(set(names)))}\n    e.g. {f}")
-    shown = 0
-    for l in text.splitlines():
-        if frame.match(l) and shown < 15:
-            print("   ", l.strip())
-            shown += 1
-        elif shown >= 15 or (shown and not l.strip()):
-            break
+            distinct[key] = (head, frames, where, set())
+        distinct[key][3].add(name)
+print(f"\n{len(distinct)} distinct sanitizer report(s)")
+for (kind, top), (head, frames, where, names) in distinct.items():
+    print(f"--- {head.replace(source + '/', '')}\n    our top frame: {top}"
+          f"\n    tests: {' '.join(sorted(names))}\n    e.g. in {where}")
+    for l in frames[:15]:
+        print("   ", l.replace(source + "/", ""))
 EOF
 python3 "$support/summarize.py" "$logs" "$source_dir" "$logs/results.txt"
 failed=$(printf '%s\n' "${results[@]}" | awk '$2 != "passed"' | wc -l)

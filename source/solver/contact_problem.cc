@@ -10,6 +10,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/vector.h>
 
@@ -73,6 +74,116 @@ namespace StabilizedLagrangian
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
     warn_if_dirichlet_not_ramped();
+  }
+
+  template <int dim>
+  std::string
+  ContactProblem<dim>::rigid_motions_left_free() const
+  {
+    // The rigid motions (dim translations, then the rotations about the
+    // body's centre, scaled by its size) restricted to the prescribed
+    // components of the Dirichlet vertices: G = Σ m mᵀ over those (vertex,
+    // component) pairs; the eigenvectors of G with a zero eigenvalue are the
+    // motions no Dirichlet condition holds.
+    if (master_surface)
+      return ""; // two bodies: each is held by the other or by its conditions
+    const unsigned int n_rotations = dim == 2 ? 1 : 3;
+    const unsigned int n_modes     = dim + n_rotations;
+    const auto         box         = GridTools::compute_bounding_box(triangulation);
+    const Point<dim>   centre      = box.center();
+    double             size        = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      size = std::max(size, box.side_length(d));
+    FullMatrix<double> gram(n_modes, n_modes);
+    Vector<double>     m(n_modes);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (bc.components[d])
+                    {
+                      const Tensor<1, dim> x = (cell->face(f)->vertex(v) - centre) / size;
+                      m                      = 0.;
+                      m[d]                   = 1.;
+                      // component d of the rotations ω × x (2D: about z)
+                      if (dim == 2)
+                        m[dim] = d == 0 ? -x[1] : x[0];
+                      else
+                        for (unsigned int axis = 0; axis < 3; ++axis)
+                          {
+                            Tensor<1, 3> w, xx;
+                            w[axis] = 1.;
+                            for (unsigned int i = 0; i < dim; ++i)
+                              xx[i] = x[i];
+                            m[dim + axis] = cross_product_3d(w, xx)[d];
+                          }
+                      for (unsigned int i = 0; i < n_modes; ++i)
+                        for (unsigned int j = 0; j < n_modes; ++j)
+                          gram(i, j) += m[i] * m[j];
+                    }
+    Utilities::MPI::sum(gram, mpi_communicator, gram);
+    double trace = 0.;
+    for (unsigned int i = 0; i < n_modes; ++i)
+      trace += gram(i, i);
+    LAPACKFullMatrix<double> matrix(n_modes);
+    matrix = gram;
+    Vector<double>     eigenvalues;
+    FullMatrix<double> eigenvectors;
+    matrix.compute_eigenvalues_symmetric(-1., 1e-10 * trace, 0., eigenvalues, eigenvectors);
+    std::string free;
+    const char *axes = "xyz";
+    for (unsigned int k = 0; k < eigenvalues.size(); ++k)
+      {
+        double rotation = 0.;
+        for (unsigned int i = dim; i < n_modes; ++i)
+          rotation += eigenvectors(i, k) * eigenvectors(i, k);
+        std::ostringstream motion;
+        if (rotation < 1e-6)
+          {
+            motion << "the translation along";
+            for (unsigned int i = 0; i < dim; ++i)
+              if (std::abs(eigenvectors(i, k)) > 1e-3)
+                motion << ' ' << (eigenvectors(i, k) < 0 ? "-" : "") << axes[i];
+          }
+        else
+          motion << "a rotation";
+        free += (free.empty() ? "" : ", ") + motion.str();
+      }
+    return free;
+  }
+
+  template <int dim>
+  unsigned int
+  ContactProblem<dim>::points_in_contact() const
+  {
+    unsigned int count = 0;
+    for (const auto &state : contact_states)
+      count += state.in_contact;
+    return Utilities::MPI::sum(count, mpi_communicator);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::close_nearest_points()
+  {
+    // Nothing touches and the Dirichlet conditions leave a rigid motion free:
+    // the loads alone cannot bring the body onto the obstacle in a
+    // quasi-static step (its system is singular). It is put on the obstacle
+    // by its points nearest to it, as a body lowered until it touches.
+    double nearest = std::numeric_limits<double>::max();
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      nearest = std::min(nearest, state.pairing.gap(k.position));
+    });
+    nearest = Utilities::MPI::min(nearest, mpi_communicator);
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      state.in_contact = state.pairing.gap(k.position) <= nearest + touching_gap;
+    });
+    pcout << "  nothing touches the obstacle and the Dirichlet conditions leave "
+          << free_rigid_motions << " free: the " << points_in_contact()
+          << " contact point(s) nearest to it (gap " << nearest << " mm) start in contact\n";
   }
 
   template <int dim>
@@ -163,6 +274,7 @@ namespace StabilizedLagrangian
     E_max               = Utilities::MPI::max(E_max, mpi_communicator);
     nodal_stiffness     = E_max * std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
     negligible_pressure = negligible_pressure_fraction * E_max;
+    free_rigid_motions  = rigid_motions_left_free();
     touching_gap        = touching_gap_fraction * GridTools::diameter(triangulation);
     setup_dofs();
     setup_contact_points();
@@ -756,6 +868,8 @@ namespace StabilizedLagrangian
     update_pairings(true);
     setup_sparsity();
     update_statuses();
+    if (!free_rigid_motions.empty() && points_in_contact() == 0)
+      close_nearest_points();
   }
 
   template <int dim>

@@ -603,6 +603,18 @@ namespace StabilizedLagrangian
             return false;
           }
 
+        // nothing in contact and a rigid motion free: the system is singular,
+        // and no smaller load step makes it less so
+        if (!free_rigid_motions.empty() && points_in_contact() == 0)
+          {
+            unrecoverable_failure =
+                "the body is not supported: no contact point is in contact (the loads pull it off "
+                "the obstacle) and the Dirichlet conditions leave " +
+                free_rigid_motions +
+                " free. Hold it by a prescribed displacement, or load it towards the obstacle";
+            pcout << "  Newton: " << unrecoverable_failure << ".\n";
+            return false;
+          }
         if (!jacobian_current)
           assemble_newton_system(true);
         TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);

@@ -509,6 +509,18 @@ namespace StabilizedLagrangian
      */
     void
     refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    /**
+     * Collective: the rigid motions of the body that no Dirichlet condition
+     * holds, in words ("the translation along y"); empty if none (or two bodies).
+     */
+    std::string
+    rigid_motions_left_free() const;
+    /** Collective: the number of contact points whose status χ is contact. */
+    unsigned int
+    points_in_contact() const;
+    /** Put the contact points nearest to the obstacle in contact (an unheld body's start). */
+    void
+    close_nearest_points();
     /** Warn when a prescribed displacement is not zero at t = 0 (applied whole in step 1). */
     void
     warn_if_dirichlet_not_ramped() const;
@@ -646,6 +658,8 @@ namespace StabilizedLagrangian
      * friction threshold sees zero there (threshold_pressure())
      */
     double negligible_pressure = 0.;
+    /** the rigid motions no Dirichlet condition holds, in words; empty if none */
+    std::string free_rigid_motions;
     /** |g_n| at most this counts as touching in the status test (round-off of the coordinates) */
     double touching_gap = 0.;
     /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
