@@ -24,6 +24,9 @@
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -42,6 +45,7 @@ namespace StabilizedLagrangian
       , dof_handler_m(triangulation)
       , verbose(verbose)
   {
+    Utilities::System::get_memory_stats(memory_at_start);
     contact_parameters.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
@@ -1699,12 +1703,62 @@ namespace StabilizedLagrangian
         parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
             triangulation, indicators, adaptive_refinement.fraction, 0.);
       }
+    // the mesh the flags make (with the smoothing's own flags), against the
+    // memory of the machine: a refinement that cannot fit is not started
+    triangulation.prepare_coarsening_and_refinement();
+    unsigned int flagged = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      flagged += cell->is_locally_owned() && cell->refine_flag_set();
+    const double cells = triangulation.n_global_active_cells();
+    const double growth =
+        (cells + Utilities::MPI::sum(flagged, mpi_communicator) * (std::pow(2., dim) - 1.)) / cells;
+    check_memory_for_growth(growth);
     // the flags this rank set, so that a resumed run rebuilds the same mesh
     refinement_history.emplace_back();
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && cell->refine_flag_set())
         refinement_history.back().push_back(cell->id());
     triangulation.execute_coarsening_and_refinement();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::check_memory_for_growth(const double growth) const
+  {
+    // The peak memory of this rank so far (the largest mesh yet, with its
+    // factorisation) scaled by the growth of the mesh, to the power of the
+    // direct solver's fill (about n log n in 2D, n^(4/3) in 3D), against the
+    // physical memory shared by the ranks of this node.
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double fill = std::pow(growth, dim == 3 ? 4. / 3. : 1.1);
+    MPI_Comm     node;
+    MPI_Comm_split_type(mpi_communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    const unsigned int ranks_on_node = Utilities::MPI::n_mpi_processes(node);
+    MPI_Comm_free(&node);
+    const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+                            static_cast<double>(sysconf(_SC_PAGESIZE)) / ranks_on_node;
+    // resident memory against the physical memory, and the address space
+    // against its limit where one is set (ulimit -v, a batch system's)
+    // (what the process held before the mesh existed, its libraries, does not grow)
+    const auto grown = [&](const double peak_kb, const double start_kb) {
+      return 1024. * (start_kb + std::max(peak_kb - start_kb, 0.) * fill);
+    };
+    double        ratio = grown(memory.VmHWM, memory_at_start.VmHWM) / physical;
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      ratio = std::max(ratio,
+                       grown(memory.VmPeak, memory_at_start.VmPeak) /
+                           static_cast<double>(limit.rlim_cur));
+    const double worst = Utilities::MPI::max(ratio, mpi_communicator);
+    if (worst > 0.9)
+      throw std::runtime_error(
+          "Adaptive refinement: the next refinement cycle multiplies the cells by " +
+          std::to_string(growth) + " and would need about " +
+          std::to_string(static_cast<long>(worst * 100.)) +
+          " % of the memory each rank has (estimated from its peak so far). Stopping "
+          "before it; the results of the cycles done are kept. Use fewer `Adaptive "
+          "refinement/Cycles`, a smaller `Refined fraction`, or more machines.");
   }
 
   template <int dim>

@@ -493,6 +493,12 @@ namespace StabilizedLagrangian
     /** Refine the mesh by the criterion of `Adaptive refinement`. */
     void
     refine_mesh();
+    /**
+     * Collective: throw when a mesh @p growth times larger would not fit in
+     * the machine's memory (estimated from the peak so far).
+     */
+    void
+    check_memory_for_growth(double growth) const;
     /** Flag the cells near the recorded active set for refinement. */
     void
     refine_around_active_set();
@@ -590,6 +596,8 @@ namespace StabilizedLagrangian
     Parameters::BoundaryConditions<dim> boundary_conditions;
     Parameters::LoadStepping            load_stepping;
     Parameters::NonlinearSolver         solver_parameters;
+    /** the process's memory before the mesh existed (check_memory_for_growth) */
+    Utilities::System::MemoryStats memory_at_start;
     /** wall time since the problem was built, for `Load stepping/Wall time limit` */
     Timer run_clock;
     bool  wall_time_limit_reached = false;
