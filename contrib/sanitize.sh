@@ -66,15 +66,27 @@ if [[ $source_mode == tree ]]; then
   source_dir=$tree_dir
 else
   source_dir=$build_dir/source
-  rm -rf "$source_dir"
-  mkdir -p "$source_dir"
+  staging=$build_dir/source.new
+  rm -rf "$staging"
+  mkdir -p "$staging" "$source_dir"
   if [[ $source_mode == copy ]]; then
-    # mtimes kept, so a rebuild stays incremental
     tar -C "$tree_dir" --exclude='./build*' --exclude=./.git --exclude='./output*' \
-        --exclude='__pycache__' -cf - . | tar -C "$source_dir" -xf -
+        --exclude='__pycache__' -cf - . | tar -C "$staging" -xf -
   else
-    git -C "$tree_dir" archive "$source_mode" | tar -C "$source_dir" -xf -
+    git -C "$tree_dir" archive "$source_mode" | tar -C "$staging" -xf -
   fi
+  # only changed files are replaced, with a fresh mtime: make rebuilds what changed (also
+  # when going back to an older revision) and no more
+  (cd "$staging" && find . -type f) | while read -r f; do
+    if ! cmp -s "$staging/$f" "$source_dir/$f"; then
+      mkdir -p "$(dirname "$source_dir/$f")"
+      cp "$staging/$f" "$source_dir/$f"
+    fi
+  done
+  (cd "$source_dir" && find . -type f) | while read -r f; do
+    [[ -e $staging/$f ]] || rm -f "$source_dir/$f"
+  done
+  rm -rf "$staging"
 fi
 echo "sanitize.sh: building $source_mode ($source_dir) in $build_dir"
 jobs=${SL_SANITIZE_JOBS:-1}

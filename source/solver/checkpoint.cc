@@ -110,7 +110,9 @@ namespace StabilizedLagrangian
       {
         if (size > data.size() - position)
           truncated();
-        std::memcpy(destination, data.data() + position, size);
+        // (an empty vector's data() may be null, which memcpy may not be given)
+        if (size > 0)
+          std::memcpy(destination, data.data() + position, size);
         position += size;
       }
       [[noreturn]] void
