@@ -298,6 +298,9 @@ print(f"\n{len(distinct)} distinct sanitizer report(s)")
 for (kind, top), (head, frames, where, names) in distinct.items():
     print(f"--- {head.replace(source + '/', '')}\n    our top frame: {top}"
           f"\n    tests: {' '.join(sorted(names))}\n    e.g. in {where}")
+    if re.search(r"failed to allocate|Failed to mmap|ReserveShadowMemoryRange", head):
+        print("    (the sanitizer runtime could not map memory: an address-space limit, RLIMIT_AS or"
+              " ulimit -v, on the process; ASan needs terabytes of it, so not a bug of ours)")
     for l in frames[:15]:
         print("   ", l.replace(source + "/", ""))
 EOF
