@@ -482,8 +482,8 @@ namespace StabilizedLagrangian
     // the statuses each iteration started from: with s and the pairing
     // frozen, statuses seen before lead to the same Newton solution, so a
     // repeat is a cycle that never ends
-    std::vector<std::vector<bool>> seen{contact_statuses()};
-    std::string                    reason;
+    std::vector<std::vector<unsigned char>> seen{contact_statuses()};
+    std::string                             reason;
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
@@ -494,7 +494,7 @@ namespace StabilizedLagrangian
         if (changes == 0)
           return true;
         seen.push_back(contact_statuses());
-        const unsigned int repeated = earlier_statuses(seen);
+        const unsigned int repeated = first_equal(seen, seen.back(), seen.size() - 1);
         if (repeated < seen.size() - 1)
           {
             reason = "the statuses after iteration " + std::to_string(i) +
@@ -518,24 +518,69 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  std::vector<bool>
+  std::vector<unsigned char>
   ContactProblem<dim>::contact_statuses() const
   {
-    std::vector<bool> statuses(contact_states.size());
+    std::vector<unsigned char> statuses(contact_states.size());
     for (unsigned int p = 0; p < contact_states.size(); ++p)
       statuses[p] = contact_states[p].in_contact;
     return statuses;
   }
 
   template <int dim>
+  std::vector<unsigned char>
+  ContactProblem<dim>::point_statuses()
+  {
+    std::vector<unsigned char> statuses;
+    statuses.reserve(contact_states.size());
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      statuses.push_back(static_cast<unsigned char>(point_response(state, k).status()));
+    });
+    return statuses;
+  }
+
+  template <int dim>
   unsigned int
-  ContactProblem<dim>::earlier_statuses(const std::vector<std::vector<bool>> &seen) const
+  ContactProblem<dim>::first_equal(const std::vector<std::vector<unsigned char>> &seen,
+                                   const std::vector<unsigned char>              &statuses,
+                                   const unsigned int                             end) const
   {
     // collective: equal on every rank
-    for (unsigned int i = 0; i + 1 < seen.size(); ++i)
-      if (Utilities::MPI::min(seen[i] == seen.back() ? 1u : 0u, mpi_communicator) == 1)
+    for (unsigned int i = 0; i < end; ++i)
+      if (Utilities::MPI::min(seen[i] == statuses ? 1u : 0u, mpi_communicator) == 1)
         return i;
-    return seen.size() - 1;
+    return end;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::ActiveSetWatch::settling(ContactProblem<dim> &problem)
+  {
+    // Frictionless contact (no point sticks), the contact statuses of a full
+    // step are new (no iterate of this Newton loop had them, so the step does
+    // not close a cycle among the finitely many active sets) and fewer points
+    // open or close than at the last step taken so: the active set settles,
+    // as in the active set method on the normal condition, which converges
+    // without damping. Coulomb's stick/slip switches have no such result (a
+    // full step there wanders among the statuses), and stay with the
+    // backtracking.
+    const auto                        stick    = static_cast<unsigned char>(Contact::Status::stick);
+    const auto                        open     = static_cast<unsigned char>(Contact::Status::open);
+    const std::vector<unsigned char>  statuses = problem.point_statuses();
+    const std::vector<unsigned char> &current  = seen.back();
+    unsigned int                      changes = 0, sticking = 0;
+    for (unsigned int p = 0; p < statuses.size(); ++p)
+      {
+        changes += (statuses[p] == open) != (current[p] == open);
+        sticking += statuses[p] == stick || current[p] == stick;
+      }
+    changes  = Utilities::MPI::sum(changes, problem.mpi_communicator);
+    sticking = Utilities::MPI::sum(sticking, problem.mpi_communicator);
+    if (sticking > 0 || changes == 0 || changes > last_changes ||
+        problem.first_equal(seen, statuses, seen.size()) < seen.size())
+      return false;
+    last_changes = changes;
+    return true;
   }
 
   template <int dim>
@@ -553,6 +598,9 @@ namespace StabilizedLagrangian
     bool   jacobian_current  = true;
     double first_measure     = 0.;
     double previous_residual = std::numeric_limits<double>::infinity();
+    // the open/stick/slip statuses of the iterates, when Newton decides them
+    const bool     statuses_folded = folded(solver_parameters.status_method);
+    ActiveSetWatch watch;
     for (unsigned int iteration = 0;; ++iteration)
       {
         if (!inadmissible_state.empty())
@@ -615,6 +663,8 @@ namespace StabilizedLagrangian
             pcout << "  Newton: " << unrecoverable_failure << ".\n";
             return false;
           }
+        if (statuses_folded)
+          watch.seen.push_back(point_statuses());
         if (!jacobian_current)
           assemble_newton_system(true);
         TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
@@ -658,7 +708,8 @@ namespace StabilizedLagrangian
         line_search(update,
                     residual,
                     previous_residual,
-                    predictor ? 0 : solver_parameters.line_search_steps);
+                    predictor ? 0 : solver_parameters.line_search_steps,
+                    statuses_folded ? &watch : nullptr);
         previous_residual = residual;
         jacobian_current  = false;
       }
@@ -669,7 +720,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
                                    const double                         residual,
                                    const double                         previous_residual,
-                                   const unsigned int                   max_halvings)
+                                   const unsigned int                   max_halvings,
+                                   ActiveSetWatch                      *watch)
   {
     // Non-monotone backtracking. With frozen statuses the residual is only
     // piecewise smooth (stick/slip in P_B, elastic/plastic switches at the
@@ -678,6 +730,13 @@ namespace StabilizedLagrangian
     // iterate before the current one. Otherwise (a cycle, or a material point
     // outside its admissible range) the step is halved until the residual
     // decreases, at most max_halvings times.
+    //
+    // When Newton decides the contact statuses, its full step is that of the
+    // primal-dual active set method (Hintermüller, Ito & Kunisch 2002; Hüeber,
+    // Stadler & Wohlmuth 2008), whose residual rises while the active set is
+    // being found (the iterate solves the equations of a set that is not yet
+    // the right one). That step is taken whole while the active set settles
+    // (ActiveSetWatch::settling).
     const TrilinosWrappers::MPI::Vector start = solution;
     double                              step  = 1.;
     for (unsigned int halving = 0;; ++halving)
@@ -692,6 +751,8 @@ namespace StabilizedLagrangian
           return;
         if (inadmissible_state.empty())
           {
+            if (halving == 0 && watch != nullptr && watch->settling(*this))
+              return;
             const double reference = halving == 0 ? previous_residual : residual;
             if (residual_norm() < (1. - 1e-4 * step) * reference)
               return;
@@ -717,9 +778,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::log_trial(const double step)
   {
     unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      ++counts[static_cast<unsigned int>(point_response(state, k).status())];
-    });
+    for (const unsigned char status : point_statuses())
+      ++counts[status];
     std::ostringstream line;
     line << std::setprecision(6) << "      step length " << step << ": residual " << residual_norm()
          << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
@@ -782,13 +842,16 @@ namespace StabilizedLagrangian
   template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);    \
   template bool ContactProblem<dim>::with_loop_folded(Parameters::LoopMethod &,                    \
                                                       const std::function<bool()> &);              \
-  template std::vector<bool> ContactProblem<dim>::contact_statuses() const;                        \
-  template unsigned int      ContactProblem<dim>::earlier_statuses(                                \
-      const std::vector<std::vector<bool>> &) const;                                          \
+  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;               \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                       \
+  template unsigned int               ContactProblem<dim>::first_equal(                            \
+      const std::vector<std::vector<unsigned char>> &,                               \
+      const std::vector<unsigned char> &,                                            \
+      unsigned int) const;                                                           \
   template bool ContactProblem<dim>::newton_loop(                                                  \
       StepStatistics &, unsigned int, unsigned int, unsigned int);                                 \
   template void ContactProblem<dim>::line_search(                                                  \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int);                        \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);      \
   template void         ContactProblem<dim>::log_iterate(unsigned int) const;                      \
   template void         ContactProblem<dim>::log_trial(double);                                    \
   template unsigned int ContactProblem<dim>::update_statuses();                                    \

@@ -340,11 +340,30 @@ namespace StabilizedLagrangian
                 const unsigned int geometry_iteration,
                 const unsigned int friction_iteration,
                 const unsigned int status_iteration);
+    /**
+     * The open/stick/slip statuses of a Newton loop's iterates, when Newton
+     * decides them: the line search takes a full step whole while the active
+     * set settles.
+     */
+    struct ActiveSetWatch
+    {
+      std::vector<std::vector<unsigned char>> seen;
+      unsigned int last_changes = std::numeric_limits<unsigned int>::max();
+      /** Collective: whether the statuses at the trial iterate settle the active set. */
+      bool
+      settling(ContactProblem<dim> &problem);
+    };
+    /**
+     * Backtracking along @p update from the current iterate (residual
+     * @p residual, the one before @p previous_residual); with @p watch, a
+     * full step that settles the active set is taken whole.
+     */
     void
     line_search(const TrilinosWrappers::MPI::Vector &update,
                 const double                         residual,
                 const double                         previous_residual,
-                const unsigned int                   max_halvings);
+                const unsigned int                   max_halvings,
+                ActiveSetWatch                      *watch);
     /** Print a Newton iterate: the residual in N and its scaled blocks. */
     void
     log_iterate(const unsigned int iteration) const;
@@ -550,15 +569,19 @@ namespace StabilizedLagrangian
     bool
     with_loop_folded(Parameters::LoopMethod &method, const std::function<bool()> &solve);
     /** The contact status χ of this rank's contact points. */
-    std::vector<bool>
+    std::vector<unsigned char>
     contact_statuses() const;
+    /** Open, stick or slip (Contact::Status) of this rank's contact points at the iterate. */
+    std::vector<unsigned char>
+    point_statuses();
     /**
-     * Collective: the first of @p seen (the statuses at the start of each
-     * status iteration) equal to its last on every rank, or the index of the
-     * last one if none is.
+     * Collective: the first of the first @p end of @p seen equal to
+     * @p statuses on every rank, or @p end if none is.
      */
     unsigned int
-    earlier_statuses(const std::vector<std::vector<bool>> &seen) const;
+    first_equal(const std::vector<std::vector<unsigned char>> &seen,
+                const std::vector<unsigned char>              &statuses,
+                unsigned int                                   end) const;
     /** Whether @p method folds its loop into the generalized Newton. */
     static bool
     folded(const Parameters::LoopMethod method)
