@@ -20,69 +20,15 @@ import sltest
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
-SCENE = """
-set Dimension = 2
-subsection Geometry
-  set Model = half ball
-  subsection half ball
-    set Radius                  = 50
-    set Global refinements      = 3
-    set Local refinements       = 3
-    set Local refinement radius = 10
-    set Contact zone radius     = 20
-  end
-end
-subsection Obstacle
-  set Model = plane
-  subsection plane
-    set Point  = 0, @Y@
-    set Normal = 0, 1
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 200000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = 2
-  set Contact quadrature   = @QUADRATURE@
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    set Boundary id = 3
-    set Components  = x
-    subsection Displacement
-      set Function expression = 0; 0
-    end
-  end
-  subsection Neumann 1
-    set Boundary id = 3
-    subsection Traction
-      set Function expression = 0; -100*t
-    end
-  end
-end
-subsection Load stepping
-  set Number of load steps = 2
-end
-"""
 COLUMNS = ("geometry_iterations", "friction_iterations", "status_iterations", "newton_iterations",
            "points_in_contact", "points_stick", "points_slip")
 for quadrature in ("Gauss-Lobatto", "Gauss"):
     runs = {}
     for y in ("0", "-1e-14"):
         out = f"{workdir}/{quadrature}-{y}"
-        code, log = sltest.run(executable, SCENE.replace("@Y@", y).replace("@QUADRATURE@", quadrature) +
-                               sltest.QUIET_OUTPUT, out, expect_success=False)
+        code, log = sltest.run(executable, sltest.scene("resting_cylinder", Y=y, QUADRATURE=quadrature,
+                                                        LOAD="-100*t") + sltest.QUIET_OUTPUT,
+                               out, expect_success=False)
         check(code == 0, f"{quadrature}, plane at y = {y}: exit code {code}")
         runs[y] = sltest.read_csv(out + "/output/statistics.csv") if code == 0 else []
     touching, above = runs["0"], runs["-1e-14"]
@@ -97,8 +43,8 @@ for quadrature in ("Gauss-Lobatto", "Gauss"):
 for name, y, load, quadrature in (("lowered", "-1", "-100*t", "Gauss-Lobatto"),
                                   ("pulled", "0", "100*t", "Gauss-Lobatto")):
     out = f"{workdir}/{name}"
-    code, log = sltest.run(executable, SCENE.replace("@Y@", y).replace("@QUADRATURE@", quadrature)
-                           .replace("-100*t", load) + sltest.QUIET_OUTPUT, out, expect_success=False)
+    code, log = sltest.run(executable, sltest.scene("resting_cylinder", Y=y, QUADRATURE=quadrature, LOAD=load) +
+                           sltest.QUIET_OUTPUT, out, expect_success=False)
     if name == "lowered":
         rows = sltest.read_csv(out + "/output/statistics.csv") if code == 0 else []
         check(code == 0 and "nothing touches the obstacle and the Dirichlet conditions leave" in log and

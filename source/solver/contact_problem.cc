@@ -101,33 +101,30 @@ namespace StabilizedLagrangian
     FullMatrix<double> gram(n_modes, n_modes);
     Vector<double>     m(n_modes);
     for (const auto &bc : boundary_conditions.dirichlet)
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-              for (const unsigned int v : cell->face(f)->vertex_indices())
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (bc.components[d])
-                    {
-                      const Tensor<1, dim> x = (cell->face(f)->vertex(v) - centre) / size;
-                      m                      = 0.;
-                      m[d]                   = 1.;
-                      // component d of the rotations ω × x (2D: about z)
-                      if (dim == 2)
-                        m[dim] = d == 0 ? -x[1] : x[0];
-                      else
-                        for (unsigned int axis = 0; axis < 3; ++axis)
-                          {
-                            Tensor<1, 3> w, xx;
-                            w[axis] = 1.;
-                            for (unsigned int i = 0; i < dim; ++i)
-                              xx[i] = x[i];
-                            m[dim + axis] = cross_product_3d(w, xx)[d];
-                          }
-                      for (unsigned int i = 0; i < n_modes; ++i)
-                        for (unsigned int j = 0; j < n_modes; ++j)
-                          gram(i, j) += m[i] * m[j];
-                    }
+      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (bc.components[d])
+            {
+              const Tensor<1, dim> x = (vertex - centre) / size;
+              m                      = 0.;
+              m[d]                   = 1.;
+              // component d of the rotations ω × x (2D: about z)
+              if (dim == 2)
+                m[dim] = d == 0 ? -x[1] : x[0];
+              else
+                for (unsigned int axis = 0; axis < 3; ++axis)
+                  {
+                    Tensor<1, 3> w, xx;
+                    w[axis] = 1.;
+                    for (unsigned int i = 0; i < dim; ++i)
+                      xx[i] = x[i];
+                    m[dim + axis] = cross_product_3d(w, xx)[d];
+                  }
+              for (unsigned int i = 0; i < n_modes; ++i)
+                for (unsigned int j = 0; j < n_modes; ++j)
+                  gram(i, j) += m[i] * m[j];
+            }
+      });
     Utilities::MPI::sum(gram, mpi_communicator, gram);
     double trace = 0.;
     for (unsigned int i = 0; i < n_modes; ++i)
@@ -499,27 +496,24 @@ namespace StabilizedLagrangian
     double         increment = 0.;
     Vector<double> before(dim), after(dim);
     for (const auto &bc : boundary_conditions.dirichlet)
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-              for (const unsigned int v : cell->face(f)->vertex_indices())
-                for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
-                  {
-                    before = 0.;
-                    if (k > 0)
-                      {
-                        bc.displacement->set_time(k * step);
-                        bc.displacement->vector_value(cell->face(f)->vertex(v), before);
-                      }
-                    bc.displacement->set_time((k + 1) * step);
-                    bc.displacement->vector_value(cell->face(f)->vertex(v), after);
-                    double norm_squared = 0.;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      if (bc.components[d])
-                        norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
-                    increment = std::max(increment, std::sqrt(norm_squared));
-                  }
+      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+        for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
+          {
+            before = 0.;
+            if (k > 0)
+              {
+                bc.displacement->set_time(k * step);
+                bc.displacement->vector_value(vertex, before);
+              }
+            bc.displacement->set_time((k + 1) * step);
+            bc.displacement->vector_value(vertex, after);
+            double norm_squared = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (bc.components[d])
+                norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
+            increment = std::max(increment, std::sqrt(norm_squared));
+          }
+      });
     for (const auto &bc : boundary_conditions.dirichlet)
       bc.displacement->check_finite(mpi_communicator);
     return Utilities::MPI::max(increment, mpi_communicator);
@@ -536,19 +530,13 @@ namespace StabilizedLagrangian
       {
         double largest = 0.;
         bc.displacement->set_time(0.);
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-                for (const unsigned int v : cell->face(f)->vertex_indices())
-                  {
-                    // (not noted as a failure: the run never evaluates t = 0)
-                    bc.displacement->Functions::ParsedFunction<dim>::vector_value(
-                        cell->face(f)->vertex(v), value);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      if (bc.components[d] && std::isfinite(value[d]))
-                        largest = std::max(largest, std::abs(value[d]));
-                  }
+        for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+          // (not noted as a failure: the run never evaluates t = 0)
+          bc.displacement->Functions::ParsedFunction<dim>::vector_value(vertex, value);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (bc.components[d] && std::isfinite(value[d]))
+              largest = std::max(largest, std::abs(value[d]));
+        });
         largest = Utilities::MPI::max(largest, mpi_communicator);
         if (largest > 0.)
           pcout << "WARNING: " << bc.displacement->name()

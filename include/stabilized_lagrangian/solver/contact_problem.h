@@ -535,6 +535,23 @@ namespace StabilizedLagrangian
     void
     refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
     /**
+     * Call f(vertex) at every vertex of the faces of @p bc's boundary on this
+     * rank's cells (a vertex shared by several faces is visited once per face).
+     */
+    template <typename Function>
+    void
+    for_each_dirichlet_vertex(const Parameters::DirichletCondition<dim> &bc,
+                              const Function                            &f) const
+    {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int face : cell->face_indices())
+            if (cell->face(face)->at_boundary() &&
+                cell->face(face)->boundary_id() == bc.boundary_id)
+              for (const unsigned int v : cell->face(face)->vertex_indices())
+                f(cell->face(face)->vertex(v));
+    }
+    /**
      * Collective: the rigid motions of the body that no Dirichlet condition
      * holds, in words ("the translation along y"); empty if none (or two bodies).
      */
