@@ -20,7 +20,7 @@
 
 namespace StabilizedLagrangian
 {
-  // The nested fixed points of seed §2.2 / DESIGN §3:
+  // The nested fixed points of seed §2.2 (doc/formulation.md, "Nested loops"):
   //   geometry loop → friction loop → status loop → Newton.
 
   template <int dim>

@@ -40,7 +40,7 @@ namespace StabilizedLagrangian
 
   /**
    * @brief State frozen at one contact integration point by the outer loops
-   * (DESIGN §3): pairing and normal (geometry loop), friction threshold
+   * (doc/formulation.md, "Nested loops"): pairing and normal (geometry loop), friction threshold
    * (friction loop), contact status (status loop).
    */
   template <int dim> struct ContactPointState
@@ -103,13 +103,19 @@ namespace StabilizedLagrangian
 
   /**
    * @brief Quasi-static frictional contact of a deformable body with a rigid
-   * obstacle, stabilized Lagrangian mixed formulation (DESIGN §2).
+   * obstacle or a second deformable body, stabilized Lagrangian mixed
+   * formulation (doc/formulation.md).
    *
-   * Unknowns: displacement u on the body, contact pressure λ_n and friction
+   * Unknowns: displacement u on the bodies, contact pressure λ_n and friction
    * semi-multiplier Λ on Γc only, assembled as one monolithic system
-   * [u | λ_n, Λ] on distributed Trilinos objects. The load-step loop and the
-   * nested fixed points live in nested_loops.cc, assembly and contact
-   * evaluation in contact_problem.cc, output in output.cc.
+   * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
+   * phase, in source/solver/ (each section of the private part names its
+   * file): contact_problem.cc the mesh and the setup, setup_checks.cc the
+   * checks of the scene, dofs.cc DoFs, constraints and sparsity,
+   * contact_points.cc pairing and statuses, assembly.cc the Newton system,
+   * nested_loops.cc the load path and the loops, refinement.cc adaptive
+   * refinement, checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test;
+   * output in source/postprocessing/output.cc.
    */
   template <int dim> class ContactProblem
   {
@@ -123,7 +129,7 @@ namespace StabilizedLagrangian
     ContactProblem(ParameterHandler &prm, const bool verbose = true);
 
     /**
-     * @brief Solve every load step; returns false if a step could not be solved.
+     * @brief Solve every load step (nested_loops.cc); returns false if a step could not be solved.
      * @param resume continue from the checkpoint in the output directory
      * (source/solver/checkpoint.cc) instead of starting from rest
      */
@@ -137,7 +143,7 @@ namespace StabilizedLagrangian
       return wall_time_limit_reached;
     }
 
-    /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points. */
+    /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points (contact_problem.cc). */
     void
     setup();
 
@@ -155,7 +161,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
-     * iterate with the contact statuses, thresholds and pairings frozen.
+     * iterate with the contact statuses, thresholds and pairings frozen
+     * (assembly.cc, as the residuals below).
      */
     void
     assemble_newton_system(const bool assemble_matrix = true);
@@ -210,14 +217,16 @@ namespace StabilizedLagrangian
       return contact_states;
     }
 
-    /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row. */
+    /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row
+     * (dofs.cc). */
     std::vector<std::pair<types::global_dof_index, unsigned int>>
     locally_owned_multiplier_components() const;
 
     /**
      * @brief Re-pair every contact point with the master (the obstacle, or the
      * deformed master surface) at the current positions; with @p resegment,
-     * first update the segments of the contact faces (update_segments()).
+     * first update the segments of the contact faces (update_segments();
+     * both in contact_points.cc).
      */
     void
     update_pairings(const bool resegment = false);
@@ -230,7 +239,8 @@ namespace StabilizedLagrangian
     bool
     update_segments();
 
-    /** @brief Refresh the ghosted copy of the iterate after current_solution() changed. */
+    /** @brief Refresh the ghosted copy of the iterate after current_solution() changed
+     * (assembly.cc). */
     void
     update_ghosts();
 
@@ -307,24 +317,13 @@ namespace StabilizedLagrangian
       unsigned int consecutive_cuts = 0;
     };
 
-    // --- nested_loops.cc: DESIGN §3 ---
+    // --- nested_loops.cc: the load path, the loops of seed §2.2, the generalized Newton ---
     /**
      * The whole load path on the current mesh, from rest, or with @p resumed
      * from the state a checkpoint restored.
      */
     bool
     solve_load_path(const bool resumed = false);
-
-    // --- checkpoint.cc ---
-    /** Write a checkpoint of the current state (every rank), replacing the previous one. */
-    void
-    write_checkpoint() const;
-    /**
-     * Rebuild the mesh and restore the state of the checkpoint in the output
-     * directory (after setup()); returns the adaptive refinement cycle it was taken in.
-     */
-    unsigned int
-    restore_checkpoint();
     bool
     solve_load_step(StepStatistics &stats);
     bool
@@ -376,105 +375,6 @@ namespace StabilizedLagrangian
     update_friction_thresholds();
     void
     apply_dirichlet_values(const double time);
-
-    // --- contact_problem.cc ---
-    void
-    make_grid();
-    /** DoFs, sparsity, contact points and history after the mesh changed. */
-    void
-    setup_after_refinement();
-    void
-    setup_dofs();
-    /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
-    void
-    choose_augmentation_parameters();
-    /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
-     */
-    double
-    largest_dirichlet_increment();
-    void
-    setup_multiplier_numbering();
-    /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
-    typename DoFHandler<dim>::active_cell_iterator
-    multiplier_cell(const typename DoFHandler<dim>::active_cell_iterator &cell) const
-    {
-      return typename DoFHandler<dim>::active_cell_iterator(
-          &triangulation, cell->level(), cell->index(), &dof_handler_m);
-    }
-    /** Whether face @p f of @p cell lies on the contact boundary Γc. */
-    template <typename CellIterator>
-    bool
-    is_contact_face(const CellIterator &cell, const unsigned int f) const
-    {
-      return cell->face(f)->at_boundary() &&
-             contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
-    }
-    /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
-    void
-    add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
-    /**
-     * Λ_α = 0 at the vertices of Γc whose displacement along the (fixed) tangent
-     * t_α of a plane obstacle is prescribed: there the stick condition leaves
-     * Λ_α undetermined (the Dirichlet reaction carries the friction) and the
-     * Newton system would be singular. On a symmetry plane, 0 is the symmetric value.
-     */
-    void
-    add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const;
-    /** The multiplier of a coarse-mesh pair: multilinear on the parents of the contact faces. */
-    void
-    add_multiplier_coarsening_constraints(AffineConstraints<double> &constraints) const;
-    /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
-    void
-    add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
-    void
-    setup_contact_points();
-    /**
-     * The sparsity pattern and the matrix: the bodies, and on Γc the slave,
-     * multiplier and (with a deformable master) the paired master faces' DoFs,
-     * with their neighbours so that small sliding keeps the pattern.
-     */
-    void
-    setup_sparsity();
-    /** Whether some pairing left the master faces of the sparsity pattern (on any rank). */
-    bool
-    pairings_left_sparsity() const;
-    /** The pairing of a slave position with the master: the obstacle, or the master surface. */
-    Obstacles::Pairing<dim>
-    pair(const Point<dim> &x) const;
-    /**
-     * With a deformable master: move the frozen pairing's master point x²(ξ)
-     * with the master's displacement and make the slip increment relative,
-     * Δu¹ − Δu²(ξ). Nothing for a rigid obstacle.
-     */
-    void
-    follow_master(Obstacles::Pairing<dim> &pairing, ContactKinematics<dim> &k) const;
-    /** The material of a cell (by its body, `Material 2`, `Material 3`, else `Material`). */
-    const Materials::Interface<dim> &
-    material_of(const typename Triangulation<dim>::cell_iterator &cell) const
-    {
-      const auto slot = material_slots.find(cell->material_id());
-      return *materials[slot == material_slots.end() ? 0 : slot->second].model;
-    }
-    /** Whether any material is finite strain. */
-    bool
-    finite_strain() const;
-    void
-    assemble_volume(const bool assemble_matrix);
-
-    void
-    assemble_contact(const bool assemble_matrix);
-    /** Add a local system to the global one (with the tangent predictor, if pending). */
-    void
-    add_to_global_system(const FullMatrix<double>                   &local_matrix,
-                         Vector<double>                             &local_rhs,
-                         const std::vector<types::global_dof_index> &dofs,
-                         const bool                                  assemble_matrix);
-    void
-    add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                             const unsigned int                                    face_no,
-                             Parameters::BoundaryFunction<dim>                    &traction,
-                             FEFaceValues<dim>                                    &fe_face_values,
-                             Vector<double>                                       &cell_rhs) const;
     double
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
     void
@@ -485,55 +385,60 @@ namespace StabilizedLagrangian
     write_run_summary(const unsigned int  n_steps,
                       const double        wall_time,
                       const WorkCounters &path_work) const;
-    /** Call f(state, kinematics) at every locally owned contact point. */
-    template <typename Function>
-    void
-    for_each_contact_point(const Function &f)
+    /**
+     * Run @p solve with the loop whose method is @p method folded into the
+     * generalized Newton, then restore the method chosen: the fallback of a
+     * fixed point that cycles or does not converge in its iterations.
+     */
+    bool
+    with_loop_folded(Parameters::LoopMethod &method, const std::function<bool()> &solve);
+    /** The contact status χ of this rank's contact points. */
+    std::vector<unsigned char>
+    contact_statuses() const;
+    /** Open, stick or slip (Contact::Status) of this rank's contact points at the iterate. */
+    std::vector<unsigned char>
+    point_statuses();
+    /**
+     * Collective: the first of the first @p end of @p seen equal to
+     * @p statuses on every rank, or @p end if none is.
+     */
+    unsigned int
+    first_equal(const std::vector<std::vector<unsigned char>> &seen,
+                const std::vector<unsigned char>              &statuses,
+                unsigned int                                   end) const;
+    /** Whether @p method folds its loop into the generalized Newton. */
+    static bool
+    folded(const Parameters::LoopMethod method)
     {
-      FaceEvaluator evaluator(*this, contact_quadrature);
-      for (const auto &face : contact_faces)
-        {
-          evaluator.reinit(face, ghosted_solution);
-          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-            {
-              ContactPointState<dim> &state = contact_states[face.first_point + q];
-              ContactKinematics<dim>  k     = evaluator.kinematics(q);
-              follow_master(state.pairing, k);
-              f(state, k);
-            }
-        }
+      return method == Parameters::LoopMethod::newton;
     }
-    /** Forces and point counts of a converged step; records the active set. */
+
+    // --- checkpoint.cc: checkpoints ---
+    /** Write a checkpoint of the current state (every rank), replacing the previous one. */
     void
-    compute_contact_statistics(StepStatistics &stats);
-    /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
-    TrilinosWrappers::MPI::Vector
-    ghosted_displacement() const;
-    /** Refine the mesh by the criterion of `Adaptive refinement`. */
-    void
-    refine_mesh();
+    write_checkpoint() const;
     /**
-     * Collective: throw when a mesh @p growth times larger would not fit in
-     * the machine's memory (estimated from the peak so far).
+     * Rebuild the mesh and restore the state of the checkpoint in the output
+     * directory (after setup()); returns the adaptive refinement cycle it was taken in.
      */
+    unsigned int
+    restore_checkpoint();
+
+    // --- contact_problem.cc: the mesh, and the setup after each refinement ---
     void
-    check_memory_for_growth(double growth) const;
-    /** Flag the cells near the recorded active set for refinement. */
+    make_grid();
+    /** DoFs, sparsity, contact points and history after the mesh changed. */
     void
-    refine_around_active_set();
-    /**
-     * The point-wise stabilized Lagrangian with the status and threshold of
-     * @p state (with the threshold's slope when it is linearised).
+    setup_after_refinement();
+
+    // --- setup_checks.cc: checks of the scene before the run: supports, warnings, r_n and r_t ---
+    /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
+    void
+    choose_augmentation_parameters();
+    /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
      */
-    Contact::PointResponse<dim - 1>
-    point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
-    /**
-     * Re-evaluate at the current iterate what the loops folded into the
-     * generalized Newton would otherwise freeze: pairing, threshold, status;
-     * and follow the deformable master (follow_master).
-     */
-    void
-    refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    double
+    largest_dirichlet_increment();
     /**
      * Call f(vertex) at every vertex of the faces of @p bc's boundary on this
      * rank's cells (a vertex shared by several faces is visited once per face).
@@ -572,39 +477,174 @@ namespace StabilizedLagrangian
     /** Warn when most of the body starts behind the rigid obstacle's surface. */
     void
     warn_if_body_behind_obstacle() const;
+
+    // --- dofs.cc: DoFs, multiplier numbering, constraints, sparsity ---
+    void
+    setup_dofs();
+    void
+    setup_multiplier_numbering();
+    /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
+    typename DoFHandler<dim>::active_cell_iterator
+    multiplier_cell(const typename DoFHandler<dim>::active_cell_iterator &cell) const
+    {
+      return typename DoFHandler<dim>::active_cell_iterator(
+          &triangulation, cell->level(), cell->index(), &dof_handler_m);
+    }
+    /** Whether face @p f of @p cell lies on the contact boundary Γc. */
+    template <typename CellIterator>
+    bool
+    is_contact_face(const CellIterator &cell, const unsigned int f) const
+    {
+      return cell->face(f)->at_boundary() &&
+             contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
+    }
+    /**
+     * Call f(dof, i) for each multiplier DoF on a contact face of the
+     * non-artificial cells, in the multiplier DoFHandler's numbering (i: its
+     * index in the cell; a DoF of several faces is visited once per face).
+     */
+    template <typename Function>
+    void
+    for_each_contact_multiplier_dof(const Function &f) const
+    {
+      std::vector<types::global_dof_index> dofs(fe_m->n_dofs_per_cell());
+      for (const auto &cell : dof_handler_m.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int face : cell->face_indices())
+            if (is_contact_face(cell, face))
+              {
+                cell->get_dof_indices(dofs);
+                for (unsigned int i = 0; i < dofs.size(); ++i)
+                  if (fe_m->has_support_on_face(i, face))
+                    f(dofs[i], i);
+              }
+    }
+    /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
+    void
+    add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
+    /**
+     * Λ_α = 0 at the vertices of Γc whose displacement along the (fixed) tangent
+     * t_α of a plane obstacle is prescribed: there the stick condition leaves
+     * Λ_α undetermined (the Dirichlet reaction carries the friction) and the
+     * Newton system would be singular. On a symmetry plane, 0 is the symmetric value.
+     */
+    void
+    add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const;
+    /** The multiplier of a coarse-mesh pair: multilinear on the parents of the contact faces. */
+    void
+    add_multiplier_coarsening_constraints(AffineConstraints<double> &constraints) const;
+    /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
+    void
+    add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
+    /**
+     * The sparsity pattern and the matrix: the bodies, and on Γc the slave,
+     * multiplier and (with a deformable master) the paired master faces' DoFs,
+     * with their neighbours so that small sliding keeps the pattern.
+     */
+    void
+    setup_sparsity();
+    /** Whether some pairing left the master faces of the sparsity pattern (on any rank). */
+    bool
+    pairings_left_sparsity() const;
+
+    // --- contact_points.cc: pairing, segments, kinematics, statuses, thresholds ---
+    void
+    setup_contact_points();
+    /** The pairing of a slave position with the master: the obstacle, or the master surface. */
+    Obstacles::Pairing<dim>
+    pair(const Point<dim> &x) const;
+    /**
+     * With a deformable master: move the frozen pairing's master point x²(ξ)
+     * with the master's displacement and make the slip increment relative,
+     * Δu¹ − Δu²(ξ). Nothing for a rigid obstacle.
+     */
+    void
+    follow_master(Obstacles::Pairing<dim> &pairing, ContactKinematics<dim> &k) const;
+    /** Whether any material is finite strain. */
+    bool
+    finite_strain() const;
+    /** Call f(state, kinematics) at every locally owned contact point. */
+    template <typename Function>
+    void
+    for_each_contact_point(const Function &f)
+    {
+      FaceEvaluator evaluator(*this, contact_quadrature);
+      for (const auto &face : contact_faces)
+        {
+          evaluator.reinit(face, ghosted_solution);
+          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+            {
+              ContactPointState<dim> &state = contact_states[face.first_point + q];
+              ContactKinematics<dim>  k     = evaluator.kinematics(q);
+              follow_master(state.pairing, k);
+              f(state, k);
+            }
+        }
+    }
+    /**
+     * The point-wise stabilized Lagrangian with the status and threshold of
+     * @p state (with the threshold's slope when it is linearised).
+     */
+    Contact::PointResponse<dim - 1>
+    point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    /**
+     * Re-evaluate at the current iterate what the loops folded into the
+     * generalized Newton would otherwise freeze: pairing, threshold, status;
+     * and follow the deformable master (follow_master).
+     */
+    void
+    refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
     /** The contact status χ of seed eq. (5) at a point, a gap within touching_gap counting as 0. */
     bool
     status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
     double
     threshold_pressure(double contact_pressure) const;
-    /**
-     * Run @p solve with the loop whose method is @p method folded into the
-     * generalized Newton, then restore the method chosen: the fallback of a
-     * fixed point that cycles or does not converge in its iterations.
-     */
-    bool
-    with_loop_folded(Parameters::LoopMethod &method, const std::function<bool()> &solve);
-    /** The contact status χ of this rank's contact points. */
-    std::vector<unsigned char>
-    contact_statuses() const;
-    /** Open, stick or slip (Contact::Status) of this rank's contact points at the iterate. */
-    std::vector<unsigned char>
-    point_statuses();
-    /**
-     * Collective: the first of the first @p end of @p seen equal to
-     * @p statuses on every rank, or @p end if none is.
-     */
-    unsigned int
-    first_equal(const std::vector<std::vector<unsigned char>> &seen,
-                const std::vector<unsigned char>              &statuses,
-                unsigned int                                   end) const;
-    /** Whether @p method folds its loop into the generalized Newton. */
-    static bool
-    folded(const Parameters::LoopMethod method)
+
+    // --- assembly.cc: assembly of the Newton system and its residual ---
+    /** The material of a cell (by its body, `Material 2`, `Material 3`, else `Material`). */
+    const Materials::Interface<dim> &
+    material_of(const typename Triangulation<dim>::cell_iterator &cell) const
     {
-      return method == Parameters::LoopMethod::newton;
+      const auto slot = material_slots.find(cell->material_id());
+      return *materials[slot == material_slots.end() ? 0 : slot->second].model;
     }
+    void
+    assemble_volume(const bool assemble_matrix);
+    void
+    assemble_contact(const bool assemble_matrix);
+    /** Add a local system to the global one (with the tangent predictor, if pending). */
+    void
+    add_to_global_system(const FullMatrix<double>                   &local_matrix,
+                         Vector<double>                             &local_rhs,
+                         const std::vector<types::global_dof_index> &dofs,
+                         const bool                                  assemble_matrix);
+    void
+    add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                             const unsigned int                                    face_no,
+                             Parameters::BoundaryFunction<dim>                    &traction,
+                             FEFaceValues<dim>                                    &fe_face_values,
+                             Vector<double>                                       &cell_rhs) const;
+
+    // --- refinement.cc: contact statistics of a step, adaptive refinement ---
+    /** Forces and point counts of a converged step; records the active set. */
+    void
+    compute_contact_statistics(StepStatistics &stats);
+    /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
+    TrilinosWrappers::MPI::Vector
+    ghosted_displacement() const;
+    /** Refine the mesh by the criterion of `Adaptive refinement`. */
+    void
+    refine_mesh();
+    /**
+     * Collective: throw when a mesh @p growth times larger would not fit in
+     * the machine's memory (estimated from the peak so far).
+     */
+    void
+    check_memory_for_growth(double growth) const;
+    /** Flag the cells near the recorded active set for refinement. */
+    void
+    refine_around_active_set();
 
     // --- output.cc ---
     void

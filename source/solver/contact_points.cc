@@ -1,0 +1,328 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <cmath>
+
+namespace StabilizedLagrangian
+{
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_contact_points()
+  {
+    contact_faces.clear();
+    unsigned int n_points = 0;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            {
+              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr});
+              n_points += contact_quadrature.size();
+            }
+    contact_states.assign(n_points, ContactPointState<dim>());
+    if (!friction_law->threshold_depends_on_pressure())
+      for (auto &state : contact_states)
+        state.friction_threshold = friction_law->threshold(0.);
+
+    // initial statuses from the initial configuration: touching points are in contact
+    sparsity_ready = false;
+    update_pairings(true);
+    setup_sparsity();
+    update_statuses();
+    if (!free_rigid_motions.empty() && points_in_contact() == 0)
+      close_nearest_points();
+  }
+
+  template <int dim>
+  Obstacles::Pairing<dim>
+  ContactProblem<dim>::pair(const Point<dim> &x) const
+  {
+    return master_surface ? master_surface->project(x) : obstacle->project(x);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::follow_master(Obstacles::Pairing<dim> &pairing,
+                                     ContactKinematics<dim>  &k) const
+  {
+    if (pairing.master_face < 0)
+      return;
+    const unsigned int    face = pairing.master_face;
+    const Point<dim - 1> &xi   = pairing.master_reference_point;
+    const Tensor<1, dim>  now  = master_surface->displacement(face, xi, ghosted_solution);
+    pairing.master_point       = master_surface->reference_point(face, xi) + now;
+    k.step_increment -= now - master_surface->displacement(face, xi, step_start);
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::finite_strain() const
+  {
+    return std::any_of(materials.begin(), materials.end(), [](const auto &body) {
+      return body.model->is_finite_strain();
+    });
+  }
+
+  // ---------------------------------------------------------------------------
+  // Evaluation on contact faces
+
+  template <int dim>
+  ContactProblem<dim>::FaceEvaluator::FaceEvaluator(const ContactProblem      &problem,
+                                                    const Quadrature<dim - 1> &quadrature,
+                                                    const bool                 follow_segments)
+      : u_dofs(problem.fe_u->n_dofs_per_cell())
+      , problem(problem)
+      , quadrature(quadrature)
+      , follow_segments(follow_segments)
+  {
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::FaceEvaluator::reinit(const ContactFace                   &face,
+                                             const TrilinosWrappers::MPI::Vector &ghosted)
+  {
+    const Quadrature<dim - 1> *wanted =
+        (follow_segments && face.segments) ? face.segments.get() : nullptr;
+    if (!u_values || wanted != current || wanted != nullptr)
+      {
+        const Quadrature<dim - 1> &rule = wanted ? *wanted : quadrature;
+        u_values                        = std::make_unique<FEFaceValues<dim>>(
+            *problem.fe_u, rule, update_values | update_quadrature_points | update_JxW_values);
+        m_values = std::make_unique<FEFaceValues<dim>>(*problem.fe_m, rule, update_values);
+        current  = wanted;
+        u_now.resize(rule.size());
+        u_start.resize(rule.size());
+      }
+    u_values->reinit(face.cell, face.face_no);
+    const auto m_cell = problem.multiplier_cell(face.cell);
+    m_values->reinit(m_cell, face.face_no);
+    face.cell->get_dof_indices(u_dofs);
+
+    std::vector<types::global_dof_index> all_m(problem.fe_m->n_dofs_per_cell());
+    m_cell->get_dof_indices(all_m);
+    m_dofs.clear();
+    m_local.clear();
+    m_coefficients.clear();
+    for (unsigned int i = 0; i < all_m.size(); ++i)
+      if (problem.fe_m->has_support_on_face(i, face.face_no))
+        {
+          Assert(all_m[i] < problem.n_multipliers, ExcInternalError());
+          m_local.push_back(i);
+          m_dofs.push_back(problem.n_u + all_m[i]);
+          m_coefficients.push_back(ghosted(problem.n_u + all_m[i]));
+        }
+
+    const FiniteElement<dim> &fe = *problem.fe_u;
+    for (unsigned int q = 0; q < u_now.size(); ++q)
+      {
+        u_now[q]   = 0.;
+        u_start[q] = 0.;
+        for (unsigned int i = 0; i < u_dofs.size(); ++i)
+          {
+            const unsigned int c   = fe.system_to_component_index(i).first;
+            const double       phi = u_values->shape_value(i, q);
+            u_now[q][c] += ghosted(u_dofs[i]) * phi;
+            u_start[q][c] += problem.step_start(u_dofs[i]) * phi;
+          }
+      }
+  }
+
+  template <int dim>
+  ContactKinematics<dim>
+  ContactProblem<dim>::FaceEvaluator::kinematics(const unsigned int q) const
+  {
+    ContactKinematics<dim> k;
+    k.displacement   = u_now[q];
+    k.step_increment = u_now[q] - u_start[q];
+    k.position       = u_values->quadrature_point(q) + u_now[q];
+    k.JxW            = u_values->JxW(q);
+    for (unsigned int a = 0; a < m_local.size(); ++a)
+      {
+        const unsigned int c   = problem.fe_m->system_to_component_index(m_local[a]).first;
+        const double       psi = m_values->shape_value(m_local[a], q);
+        if (c == 0)
+          k.contact_pressure += m_coefficients[a] * psi;
+        else
+          k.semi_multiplier[c - 1] += m_coefficients[a] * psi;
+      }
+    return k;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::update_pairings(const bool resegment)
+  {
+    if (master_surface)
+      master_surface->update_configuration(ghosted_solution);
+    const bool    new_points = resegment && update_segments();
+    FaceEvaluator evaluator(*this, contact_quadrature);
+    for (const auto &face : contact_faces)
+      {
+        evaluator.reinit(face, ghosted_solution);
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+          contact_states[face.first_point + q].pairing = pair(evaluator.kinematics(q).position);
+      }
+    if (new_points)
+      {
+        // the new points take the threshold and status of the current iterate,
+        // which the loops would give them
+        update_friction_thresholds();
+        update_statuses();
+      }
+    if (master_surface && sparsity_ready && pairings_left_sparsity())
+      setup_sparsity();
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::update_segments()
+  {
+    if (dim != 2 || !master_surface)
+      return false;
+    FaceEvaluator                       ends(*this, QTrapezoid<dim - 1>(), false);
+    std::vector<ContactFace>            faces;
+    std::vector<ContactPointState<dim>> states;
+    int                                 changed = 0;
+    for (const auto &face : contact_faces)
+      {
+        ends.reinit(face, ghosted_solution);
+        const Point<dim>     A      = ends.kinematics(0).position;
+        const Tensor<1, dim> AB     = ends.kinematics(1).position - A;
+        const double         length = AB.norm();
+        BoundingBox<dim>     box(std::vector<Point<dim>>{A, A + AB});
+        box.extend(0.5 * length);
+        // the parameters in (0, 1) of the master's vertices projected on the face
+        std::vector<double> cuts = {0., 1.};
+        for (const auto &vertex : master_surface->vertices_near(box))
+          {
+            const double s = (vertex - A) * AB / (length * length);
+            if (s > 1e-8 && s < 1. - 1e-8 && (vertex - (A + s * AB)).norm() <= length)
+              cuts.push_back(s);
+          }
+        std::sort(cuts.begin(), cuts.end());
+        cuts.erase(std::unique(cuts.begin(),
+                               cuts.end(),
+                               [](const double a, const double b) { return b - a < 1e-8; }),
+                   cuts.end());
+        ContactFace cut_face{
+            face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr};
+        if (cuts.size() > 2)
+          {
+            std::vector<Point<dim - 1>> points;
+            std::vector<double>         weights;
+            for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+              for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+                {
+                  const double width = cuts[k + 1] - cuts[k];
+                  points.emplace_back(cuts[k] + width * contact_quadrature.point(q)[0]);
+                  weights.push_back(width * contact_quadrature.weight(q));
+                }
+            cut_face.segments = std::make_shared<const Quadrature<dim - 1>>(points, weights);
+          }
+        const Quadrature<dim - 1> &old_rule = face_quadrature(face);
+        const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);
+        bool                       same     = old_rule.size() == new_rule.size();
+        for (unsigned int q = 0; q < new_rule.size() && same; ++q)
+          same = old_rule.point(q).distance(new_rule.point(q)) < 1e-12;
+        if (same)
+          {
+            cut_face.segments = face.segments;
+            states.insert(states.end(),
+                          contact_states.begin() + face.first_point,
+                          contact_states.begin() + face.first_point + old_rule.size());
+          }
+        else
+          {
+            changed = 1;
+            states.resize(states.size() + new_rule.size());
+          }
+        faces.push_back(cut_face);
+      }
+    contact_faces  = faces;
+    contact_states = states;
+    return Utilities::MPI::max(changed, mpi_communicator) == 1;
+  }
+
+  template <int dim>
+  Contact::PointResponse<dim - 1>
+  ContactProblem<dim>::point_response(const ContactPointState<dim> &state,
+                                      const ContactKinematics<dim> &k) const
+  {
+    return Contact::PointResponse<dim - 1>(
+        k.contact_pressure,
+        state.pairing.gap(k.position),
+        k.semi_multiplier,
+        state.pairing.tangential_components(k.step_increment),
+        state.in_contact,
+        state.friction_threshold,
+        friction_law->has_friction(),
+        contact_parameters.r_n,
+        contact_parameters.r_t,
+        folded(solver_parameters.friction_method)
+            ? friction_law->threshold_derivative(threshold_pressure(k.contact_pressure))
+            : 0.);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refresh_folded_state(ContactPointState<dim> &state,
+                                            ContactKinematics<dim> &k) const
+  {
+    // (a deformable master's pairings are refreshed before the assembly)
+    if (folded(solver_parameters.geometry_method) && !master_surface)
+      state.pairing = obstacle->project(k.position);
+    follow_master(state.pairing, k);
+    if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
+      state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
+    if (folded(solver_parameters.status_method))
+      state.in_contact = status(state, k);
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::status(const ContactPointState<dim> &state,
+                              const ContactKinematics<dim> &k) const
+  {
+    // A gap within round-off of zero touches: a body resting on the obstacle
+    // by a vertex placed 1e-14 mm above it must start in contact, as one at
+    // exactly zero does, or a load-controlled body has no support at all.
+    const double gap = state.pairing.gap(k.position);
+    return Contact::is_in_contact(Contact::augmented_pressure(
+        k.contact_pressure, std::abs(gap) <= touching_gap ? 0. : gap, contact_parameters.r_n));
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::threshold_pressure(const double contact_pressure) const
+  {
+    return contact_pressure > negligible_pressure ? contact_pressure : 0.;
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                            \
+  template void                    ContactProblem<dim>::setup_contact_points();                        \
+  template Obstacles::Pairing<dim> ContactProblem<dim>::pair(const Point<dim> &) const;                \
+  template void                    ContactProblem<dim>::follow_master(Obstacles::Pairing<dim> &,       \
+                                                   ContactKinematics<dim> &) const; \
+  template bool                    ContactProblem<dim>::finite_strain() const;                         \
+  template class ContactProblem<dim>::FaceEvaluator;                                                   \
+  template void                            ContactProblem<dim>::update_pairings(bool);                 \
+  template bool                            ContactProblem<dim>::update_segments();                     \
+  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(                        \
+      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;                           \
+  template void   ContactProblem<dim>::refresh_folded_state(ContactPointState<dim> &,                  \
+                                                          ContactKinematics<dim> &) const;           \
+  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,                          \
+                                            const ContactKinematics<dim> &) const;                   \
+  template double ContactProblem<dim>::threshold_pressure(double) const;
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian

@@ -1,0 +1,414 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <cmath>
+
+namespace StabilizedLagrangian
+{
+  namespace
+  {
+    /**
+     * Multilinear weights of the vertices of a face at vertex @p v of its
+     * child @p c (isotropic refinement, children and vertices numbered
+     * lexicographically); empty when that vertex is a vertex of the face.
+     */
+    template <int dim>
+    std::vector<double>
+    child_vertex_weights(const unsigned int c, const unsigned int v)
+    {
+      std::array<double, dim - 1> xi;
+      bool                        face_vertex = true;
+      for (unsigned int d = 0; d < dim - 1; ++d)
+        {
+          xi[d] = 0.5 * (((c >> d) & 1) + ((v >> d) & 1));
+          face_vertex &= (xi[d] == 0. || xi[d] == 1.);
+        }
+      if (face_vertex)
+        return {};
+      std::vector<double> weights(GeometryInfo<dim>::vertices_per_face, 1.);
+      for (unsigned int k = 0; k < weights.size(); ++k)
+        for (unsigned int d = 0; d < dim - 1; ++d)
+          weights[k] *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
+      return weights;
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_dofs()
+  {
+    fe_u = fe_pair->displacement_element();
+    fe_m = fe_pair->multiplier_element(friction_law->has_friction() ? dim : 1);
+    dof_handler_u.distribute_dofs(*fe_u);
+    dof_handler_m.distribute_dofs(*fe_m);
+    setup_multiplier_numbering();
+
+    n_u             = dof_handler_u.n_dofs();
+    locally_owned_u = dof_handler_u.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler_u, locally_relevant_u);
+
+    IndexSet contact_block(dof_handler_m.n_dofs());
+    contact_block.add_range(0, n_multipliers);
+    IndexSet relevant_m;
+    DoFTools::extract_locally_relevant_dofs(dof_handler_m, relevant_m);
+    const IndexSet owned_multipliers    = dof_handler_m.locally_owned_dofs() & contact_block;
+    const IndexSet relevant_multipliers = relevant_m & contact_block;
+
+    locally_owned.clear();
+    locally_owned.set_size(n_u + n_multipliers);
+    locally_owned.add_indices(locally_owned_u);
+    locally_owned.add_indices(owned_multipliers, n_u);
+    locally_owned.compress();
+    locally_relevant.clear();
+    locally_relevant.set_size(n_u + n_multipliers);
+    locally_relevant.add_indices(locally_relevant_u);
+    locally_relevant.add_indices(relevant_multipliers, n_u);
+    master_surface.reset();
+    if (!contact_parameters.master_ids.empty())
+      {
+        // every rank sees the whole master surface (its DoFs are ghosts)
+        master_surface = std::make_unique<Contact::MasterSurface<dim>>(
+            dof_handler_u, contact_parameters.master_ids, mpi_communicator);
+        if (master_surface->n_faces() == 0)
+          throw InputError("Contact/Master boundary ids: the master boundary has no faces.");
+        locally_relevant.add_indices(master_surface->dofs());
+      }
+    locally_relevant.compress();
+
+    const unsigned int u_degree = fe_pair->displacement_degree();
+    cell_quadrature             = QGauss<dim>(u_degree + 1);
+    if (contact_parameters.quadrature == Parameters::ContactQuadrature::gauss)
+      contact_quadrature = QGauss<dim - 1>(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
+    else
+      // nodal for the multiplier when it is at least as rich as the displacement
+      // trace; otherwise enough points to integrate ψ φ·n exactly
+      contact_quadrature =
+          QGaussLobatto<dim - 1>(std::max({fe_pair->multiplier_degree(), u_degree, 1u}) + 1);
+
+    hanging_constraints.clear();
+    hanging_constraints.reinit(locally_relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
+    add_multiplier_hanging_node_constraints(hanging_constraints);
+    if (fe_pair->multiplier_on_coarser_mesh())
+      add_multiplier_coarsening_constraints(hanging_constraints);
+    // in 3D, chains of hanging nodes may end on another rank's DoFs
+    hanging_constraints.make_consistent_in_parallel(
+        locally_owned, locally_relevant, mpi_communicator);
+    hanging_constraints.close();
+    newton_constraints.clear();
+    newton_constraints.reinit(locally_relevant);
+    newton_constraints.merge(hanging_constraints);
+    add_homogeneous_dirichlet_constraints(newton_constraints);
+    add_prescribed_slip_constraints(newton_constraints);
+    newton_constraints.make_consistent_in_parallel(
+        locally_owned, locally_relevant, mpi_communicator);
+    newton_constraints.close();
+
+    system_rhs.reinit(locally_owned, mpi_communicator);
+    solution.reinit(locally_owned, mpi_communicator);
+    ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
+    step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
+    internal_force.reinit(locally_owned, mpi_communicator);
+    external_force.reinit(locally_owned, mpi_communicator);
+    multiplier_length_weights.reinit(locally_owned, mpi_communicator);
+    owned_multiplier_components = locally_owned_multiplier_components();
+    residual_scaling.reinit(locally_owned, mpi_communicator);
+    residual_scaling = 1.;
+    for (const auto &[row, component] : owned_multiplier_components)
+      residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
+    residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_multiplier_hanging_node_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    // Continuity of the multipliers at the hanging vertices (and edges) of Γc
+    // in 3D: the constraints of the trace element on the whole skeleton,
+    // restricted to the Γc block and shifted to the monolithic numbering. The
+    // skeleton's other DoFs are never used.
+    IndexSet relevant_m;
+    DoFTools::extract_locally_relevant_dofs(dof_handler_m, relevant_m);
+    AffineConstraints<double> skeleton(relevant_m);
+    DoFTools::make_hanging_node_constraints(dof_handler_m, skeleton);
+    skeleton.close();
+    for (const auto &line : skeleton.get_lines())
+      {
+        if (line.index >= n_multipliers)
+          continue;
+        // the contact boundary must not end inside a refined face: there a
+        // hanging vertex of Γc depends on one off it, which has no multiplier
+        AssertThrow(std::all_of(line.entries.begin(),
+                                line.entries.end(),
+                                [&](const auto &entry) { return entry.first < n_multipliers; }),
+                    ExcMessage("Contact/Contact boundary ids: the contact boundary ends inside a "
+                               "refined face (some children of the face are on it, some not), "
+                               "so a multiplier at a hanging vertex would depend on one off the "
+                               "contact boundary. Give all the children of a refined face the "
+                               "same boundary id."));
+        constraints.add_line(n_u + line.index);
+        for (const auto &[column, weight] : line.entries)
+          constraints.add_entry(n_u + line.index, n_u + column, weight);
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_multiplier_coarsening_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    // The multiplier is continuous and multilinear on the parent of each
+    // contact face: the values at the vertices of the children that are not
+    // vertices of the parent are interpolated from the parent's vertices.
+    for (const auto &line : constraints.get_lines())
+      if (line.index >= n_u)
+        throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+                         " needs a contact boundary without hanging nodes.");
+    constexpr unsigned int n_face_vertices = GeometryInfo<dim>::vertices_per_face;
+    const unsigned int     n_components    = fe_m->n_components();
+    for (const auto &cell : dof_handler_m.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            {
+              if (cell->level() == 0)
+                throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+                                 " needs the contact boundary refined at least once.");
+              const auto coarse_face = cell->parent()->face(f);
+              for (unsigned int c = 0; c < coarse_face->n_children(); ++c)
+                for (unsigned int v = 0; v < n_face_vertices; ++v)
+                  {
+                    const std::vector<double> weights = child_vertex_weights<dim>(c, v);
+                    for (unsigned int component = 0; component < n_components && !weights.empty();
+                         ++component)
+                      {
+                        const types::global_dof_index fine =
+                            coarse_face->child(c)->vertex_dof_index(v, component);
+                        std::vector<types::global_dof_index> coarse(n_face_vertices);
+                        for (unsigned int k = 0; k < n_face_vertices; ++k)
+                          coarse[k] = coarse_face->vertex_dof_index(k, component);
+                        // at the edge of Γc a parent face may be only partly in
+                        // Γc: its fine nodes there stay free
+                        if (fine >= n_multipliers || constraints.is_constrained(n_u + fine) ||
+                            *std::max_element(coarse.begin(), coarse.end()) >= n_multipliers)
+                          continue;
+                        constraints.add_line(n_u + fine);
+                        for (unsigned int k = 0; k < n_face_vertices; ++k)
+                          if (weights[k] != 0.)
+                            constraints.add_entry(n_u + fine, n_u + coarse[k], weights[k]);
+                      }
+                  }
+            }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_homogeneous_dirichlet_constraints(
+      AffineConstraints<double> &constraints) const
+  {
+    for (const auto &bc : boundary_conditions.dirichlet)
+      VectorTools::interpolate_boundary_values(dof_handler_u,
+                                               bc.boundary_id,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               constraints,
+                                               bc.components);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
+  {
+    if (!friction_law->has_friction() || master_surface || !obstacle->is_flat())
+      return;
+    const auto tangents = obstacle->project(Point<dim>()).tangents;
+    // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)
+    std::vector<unsigned int> m_component(fe_m->n_dofs_per_vertex());
+    for (unsigned int i = 0; i < m_component.size(); ++i)
+      m_component[i] = fe_m->system_to_component_index(i).first;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            {
+              const auto face   = cell->face(f);
+              const auto face_m = multiplier_cell(cell)->face(f);
+              for (const unsigned int v : face->vertex_indices())
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  {
+                    // t_α·u is prescribed when every component it involves is
+                    bool prescribed = true;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (std::abs(tangents[a][d]) > 1e-12)
+                        {
+                          const auto u = face->vertex_dof_index(v, d);
+                          prescribed &= constraints.is_constrained(u) &&
+                                        !hanging_constraints.is_constrained(u);
+                        }
+                    if (!prescribed)
+                      continue;
+                    for (unsigned int i = 0; i < m_component.size(); ++i)
+                      if (m_component[i] == a + 1)
+                        {
+                          const auto m = n_u + face_m->vertex_dof_index(v, i);
+                          if (!constraints.is_constrained(m))
+                            constraints.add_line(m);
+                        }
+                  }
+            }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_multiplier_numbering()
+  {
+    // Number the multiplier DoFs on Γc first, [0, N_Γ), rank after rank; the
+    // others (on the rest of the skeleton) are never used.
+    std::set<types::global_dof_index> on_contact;
+    for_each_contact_multiplier_dof(
+        [&](const types::global_dof_index dof, unsigned int) { on_contact.insert(dof); });
+
+    const IndexSet          owned           = dof_handler_m.locally_owned_dofs();
+    types::global_dof_index n_contact_local = 0;
+    for (const auto dof : on_contact)
+      if (owned.is_element(dof))
+        ++n_contact_local;
+    const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
+
+    types::global_dof_index                 contact_offset = 0, other_offset = 0;
+    const std::array<unsigned long long, 2> local  = {{n_contact_local, n_other_local}};
+    std::array<unsigned long long, 2>       prefix = {{0, 0}};
+    MPI_Exscan(local.data(), prefix.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi_communicator);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
+      {
+        contact_offset = prefix[0];
+        other_offset   = prefix[1];
+      }
+    n_multipliers = Utilities::MPI::sum(n_contact_local, mpi_communicator);
+
+    std::vector<types::global_dof_index> new_numbers(owned.n_elements());
+    types::global_dof_index              next_contact = contact_offset;
+    types::global_dof_index              next_other   = n_multipliers + other_offset;
+    for (unsigned int k = 0; k < owned.n_elements(); ++k)
+      new_numbers[k] = on_contact.count(owned.nth_index_in_set(k)) ? next_contact++ : next_other++;
+    dof_handler_m.renumber_dofs(new_numbers);
+  }
+
+  template <int dim>
+  std::vector<std::pair<types::global_dof_index, unsigned int>>
+  ContactProblem<dim>::locally_owned_multiplier_components() const
+  {
+    std::map<types::global_dof_index, unsigned int> components;
+    for_each_contact_multiplier_dof([&](const types::global_dof_index dof, const unsigned int i) {
+      if (locally_owned.is_element(n_u + dof))
+        components[n_u + dof] = fe_m->system_to_component_index(i).first;
+    });
+    return {components.begin(), components.end()};
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_sparsity()
+  {
+    TimerOutput::Scope                   scope(timer, "sparsity pattern");
+    DynamicSparsityPattern               dsp(locally_relevant);
+    std::vector<types::global_dof_index> u_dofs(fe_u->n_dofs_per_cell());
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(u_dofs);
+          newton_constraints.add_entries_local_to_global(u_dofs, dsp, false);
+        }
+    FaceEvaluator evaluator(*this, contact_quadrature);
+    sparsity_master_faces.assign(contact_faces.size(), {});
+    for (unsigned int c = 0; c < contact_faces.size(); ++c)
+      {
+        const ContactFace &face = contact_faces[c];
+        evaluator.reinit(face, ghosted_solution);
+        std::vector<types::global_dof_index> local_dofs = evaluator.u_dofs;
+        local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
+        if (master_surface)
+          {
+            // the paired master faces and their neighbours
+            std::set<unsigned int> near;
+            for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+              for (const unsigned int m : master_surface->neighbours(
+                       contact_states[face.first_point + q].pairing.master_face))
+                near.insert(m);
+            sparsity_master_faces[c].assign(near.begin(), near.end());
+            for (const unsigned int m : near)
+              {
+                const auto master_dofs = master_surface->face_dof_indices(m);
+                local_dofs.insert(local_dofs.end(), master_dofs.begin(), master_dofs.end());
+              }
+            std::sort(local_dofs.begin(), local_dofs.end());
+            local_dofs.erase(std::unique(local_dofs.begin(), local_dofs.end()), local_dofs.end());
+          }
+        newton_constraints.add_entries_local_to_global(local_dofs, dsp, false);
+      }
+    SparsityTools::distribute_sparsity_pattern(
+        dsp, locally_owned, mpi_communicator, locally_relevant);
+    // the factorisation refers to the old matrix: release it first
+    direct_solver.reset();
+    system_matrix.reinit(locally_owned, locally_owned, dsp, mpi_communicator);
+    direct_solver =
+        std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver,
+                                                      linear_solver_parameters.null_pivot_detection,
+                                                      linear_solver_parameters.workspace_increase);
+    sparsity_ready = true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::pairings_left_sparsity() const
+  {
+    int left = 0;
+    if (master_surface)
+      {
+        if (sparsity_master_faces.size() != contact_faces.size())
+          left = 1;
+        else
+          for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
+            for (unsigned int q = 0; q < face_quadrature(contact_faces[c]).size(); ++q)
+              {
+                const auto &faces = sparsity_master_faces[c];
+                const int m = contact_states[contact_faces[c].first_point + q].pairing.master_face;
+                if (!std::binary_search(faces.begin(), faces.end(), static_cast<unsigned int>(m)))
+                  left = 1;
+              }
+      }
+    return Utilities::MPI::max(left, mpi_communicator) == 1;
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                       \
+  template void ContactProblem<dim>::setup_dofs();                                                \
+  template void ContactProblem<dim>::add_multiplier_hanging_node_constraints(                     \
+      AffineConstraints<double> &) const;                                                         \
+  template void ContactProblem<dim>::add_multiplier_coarsening_constraints(                       \
+      AffineConstraints<double> &) const;                                                         \
+  template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
+      AffineConstraints<double> &) const;                                                         \
+  template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
+      const;                                                                                      \
+  template void ContactProblem<dim>::setup_multiplier_numbering();                                \
+  template std::vector<std::pair<types::global_dof_index, unsigned int>>                          \
+                ContactProblem<dim>::locally_owned_multiplier_components() const;                 \
+  template void ContactProblem<dim>::setup_sparsity();                                            \
+  template bool ContactProblem<dim>::pairings_left_sparsity() const;
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian

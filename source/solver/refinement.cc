@@ -1,0 +1,204 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/distributed/grid_refinement.h>
+
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <stabilized_lagrangian/contact/friction_law_check.h>
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cmath>
+
+namespace StabilizedLagrangian
+{
+  template <int dim>
+  void
+  ContactProblem<dim>::compute_contact_statistics(StepStatistics &stats)
+  {
+    unsigned int   counts[4]    = {0, 0, 0, 0}; // all, in contact, stick, slip
+    double         normal_force = 0.;
+    Tensor<1, dim> total_force, tangential_force;
+    double         largest_displacement = 0.;
+    for (const auto i : locally_owned_u)
+      largest_displacement = std::max(largest_displacement, std::abs(solution(i)));
+    // the multiplier equations of the converged iterate (system_rhs is its residual)
+    Contact::FrictionLawCheck<dim> check(largest_displacement);
+    for (const auto &[row, component] : owned_multiplier_components)
+      if (multiplier_length_weights(row) > 0.)
+        check.add_multiplier_row(component == 0,
+                                 std::abs(system_rhs(row)) / multiplier_length_weights(row));
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      const auto point = point_response(state, k);
+      ++counts[0];
+      if (point.status() == Contact::Status::open)
+        return;
+      ++counts[1];
+      ++counts[point.status() == Contact::Status::stick ? 2 : 3];
+      check.add_point(k.position - k.displacement,
+                      point.tangential_traction().norm(),
+                      friction_law->threshold(threshold_pressure(k.contact_pressure)));
+      active_set.push_back(k.position - k.displacement);
+      normal_force += k.JxW * point.normal_traction();
+      total_force += k.JxW * point.normal_traction() * state.pairing.normal;
+      tangential_force +=
+          k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
+    });
+    total_force += tangential_force;
+    stats.contact_points            = Utilities::MPI::sum(counts[0], mpi_communicator);
+    stats.points_in_contact         = Utilities::MPI::sum(counts[1], mpi_communicator);
+    stats.points_stick              = Utilities::MPI::sum(counts[2], mpi_communicator);
+    stats.points_slip               = Utilities::MPI::sum(counts[3], mpi_communicator);
+    stats.normal_force              = Utilities::MPI::sum(normal_force, mpi_communicator);
+    const Tensor<1, dim> total      = Utilities::MPI::sum(total_force, mpi_communicator);
+    const Tensor<1, dim> tangential = Utilities::MPI::sum(tangential_force, mpi_communicator);
+    stats.tangential_force          = tangential.norm();
+    for (unsigned int d = 0; d < dim; ++d)
+      stats.contact_force[d] = total[d];
+    stats.friction_law_violations =
+        check.gather(mpi_communicator, solver_parameters.friction_tolerance);
+    stats.friction_law_report = check.report();
+  }
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  ContactProblem<dim>::ghosted_displacement() const
+  {
+    TrilinosWrappers::MPI::Vector u_owned(locally_owned_u, mpi_communicator);
+    for (const auto index : locally_owned_u)
+      u_owned(index) = solution(index);
+    u_owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector u(locally_owned_u, locally_relevant_u, mpi_communicator);
+    u = u_owned;
+    return u;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refine_mesh()
+  {
+    if (adaptive_refinement.criterion == Parameters::AdaptiveRefinement::Criterion::active_set)
+      refine_around_active_set();
+    else
+      {
+        // Kelly indicators of the displacement of the last converged state
+        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+        Vector<float>                       indicators(triangulation.n_active_cells());
+        KellyErrorEstimator<dim>::estimate(
+            dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
+        parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+            triangulation, indicators, adaptive_refinement.fraction, 0.);
+      }
+    // the mesh the flags make (with the smoothing's own flags), against the
+    // memory of the machine: a refinement that cannot fit is not started
+    triangulation.prepare_coarsening_and_refinement();
+    unsigned int flagged = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      flagged += cell->is_locally_owned() && cell->refine_flag_set();
+    const double cells = triangulation.n_global_active_cells();
+    const double growth =
+        (cells + Utilities::MPI::sum(flagged, mpi_communicator) * (std::pow(2., dim) - 1.)) / cells;
+    check_memory_for_growth(growth);
+    // the flags this rank set, so that a resumed run rebuilds the same mesh
+    refinement_history.emplace_back();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->refine_flag_set())
+        refinement_history.back().push_back(cell->id());
+    triangulation.execute_coarsening_and_refinement();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::check_memory_for_growth(const double growth) const
+  {
+    // The peak memory of this rank so far (the largest mesh yet, with its
+    // factorisation) scaled by the growth of the mesh, to the power of the
+    // direct solver's fill (about n log n in 2D, n^(4/3) in 3D), against the
+    // physical memory shared by the ranks of this node.
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double fill = std::pow(growth, dim == 3 ? 4. / 3. : 1.1);
+    MPI_Comm     node;
+    MPI_Comm_split_type(mpi_communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    const unsigned int ranks_on_node = Utilities::MPI::n_mpi_processes(node);
+    MPI_Comm_free(&node);
+    const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+                            static_cast<double>(sysconf(_SC_PAGESIZE)) / ranks_on_node;
+    // resident memory against the physical memory, and the address space
+    // against its limit where one is set (ulimit -v, a batch system's)
+    // (what the process held before the mesh existed, its libraries, does not grow)
+    const auto grown = [&](const double peak_kb, const double start_kb) {
+      return 1024. * (start_kb + std::max(peak_kb - start_kb, 0.) * fill);
+    };
+    double        ratio = grown(memory.VmHWM, memory_at_start.VmHWM) / physical;
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      ratio = std::max(ratio,
+                       grown(memory.VmPeak, memory_at_start.VmPeak) /
+                           static_cast<double>(limit.rlim_cur));
+    const double worst = Utilities::MPI::max(ratio, mpi_communicator);
+    if (worst > 0.9)
+      throw std::runtime_error(
+          "Adaptive refinement: the next refinement cycle multiplies the cells by " +
+          std::to_string(growth) + " and would need about " +
+          std::to_string(static_cast<long>(worst * 100.)) +
+          " % of the memory each rank has (estimated from its peak so far). Stopping "
+          "before it; the results of the cycles done are kept. Use fewer `Adaptive "
+          "refinement/Cycles`, a smaller `Refined fraction`, or more machines.");
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refine_around_active_set()
+  {
+    // every rank needs every active point: a cell may lie near another rank's
+    std::vector<Point<dim>> points;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, active_set))
+      points.insert(points.end(), part.begin(), part.end());
+    if (points.empty())
+      {
+        pcout << "  no contact point was in contact: the mesh is refined globally\n";
+        triangulation.refine_global(1);
+        return;
+      }
+    // the band scales with the size of the active zone (its bounding box's
+    // diameter), so the material below the contact, where the stresses vary
+    // over that size, is refined too; the half cell diameter keeps the cells
+    // that contain active points
+    const auto   box = BoundingBox<dim>(points);
+    const double zone_size =
+        box.get_boundary_points().first.distance(box.get_boundary_points().second);
+    const auto tree = pack_rtree(points);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::vector<Point<dim>> nearest;
+          tree.query(boost::geometry::index::nearest(cell->center(), 1),
+                     std::back_inserter(nearest));
+          if (cell->center().distance(nearest[0]) <=
+              adaptive_refinement.band * zone_size + 0.5 * cell->diameter())
+            cell->set_refine_flag();
+        }
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                          \
+  template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);                   \
+  template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
+  template void                          ContactProblem<dim>::refine_mesh();                         \
+  template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \
+  template void                          ContactProblem<dim>::refine_around_active_set();
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian

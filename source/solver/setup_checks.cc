@@ -1,0 +1,304 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace StabilizedLagrangian
+{
+  template <int dim>
+  std::string
+  ContactProblem<dim>::rigid_motions_left_free() const
+  {
+    // The rigid motions (dim translations, then the rotations about the
+    // body's centre, scaled by its size) restricted to the prescribed
+    // components of the Dirichlet vertices: G = Σ m mᵀ over those (vertex,
+    // component) pairs; the eigenvectors of G with a zero eigenvalue are the
+    // motions no Dirichlet condition holds.
+    if (master_surface)
+      return ""; // two bodies: each is held by the other or by its conditions
+    const unsigned int n_rotations = dim == 2 ? 1 : 3;
+    const unsigned int n_modes     = dim + n_rotations;
+    const auto         box         = GridTools::compute_bounding_box(triangulation);
+    const Point<dim>   centre      = box.center();
+    double             size        = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      size = std::max(size, box.side_length(d));
+    FullMatrix<double> gram(n_modes, n_modes);
+    Vector<double>     m(n_modes);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (bc.components[d])
+            {
+              const Tensor<1, dim> x = (vertex - centre) / size;
+              m                      = 0.;
+              m[d]                   = 1.;
+              // component d of the rotations ω × x (2D: about z)
+              if (dim == 2)
+                m[dim] = d == 0 ? -x[1] : x[0];
+              else
+                for (unsigned int axis = 0; axis < 3; ++axis)
+                  {
+                    Tensor<1, 3> w, xx;
+                    w[axis] = 1.;
+                    for (unsigned int i = 0; i < dim; ++i)
+                      xx[i] = x[i];
+                    m[dim + axis] = cross_product_3d(w, xx)[d];
+                  }
+              for (unsigned int i = 0; i < n_modes; ++i)
+                for (unsigned int j = 0; j < n_modes; ++j)
+                  gram(i, j) += m[i] * m[j];
+            }
+      });
+    Utilities::MPI::sum(gram, mpi_communicator, gram);
+    double trace = 0.;
+    for (unsigned int i = 0; i < n_modes; ++i)
+      trace += gram(i, i);
+    LAPACKFullMatrix<double> matrix(n_modes);
+    matrix = gram;
+    Vector<double>     eigenvalues;
+    FullMatrix<double> eigenvectors;
+    matrix.compute_eigenvalues_symmetric(-1., 1e-10 * trace, 0., eigenvalues, eigenvectors);
+    std::string free;
+    const char *axes = "xyz";
+    for (unsigned int k = 0; k < eigenvalues.size(); ++k)
+      {
+        double rotation = 0.;
+        for (unsigned int i = dim; i < n_modes; ++i)
+          rotation += eigenvectors(i, k) * eigenvectors(i, k);
+        std::ostringstream motion;
+        if (rotation < 1e-6)
+          {
+            motion << "the translation along";
+            for (unsigned int i = 0; i < dim; ++i)
+              if (std::abs(eigenvectors(i, k)) > 1e-3)
+                motion << ' ' << (eigenvectors(i, k) < 0 ? "-" : "") << axes[i];
+          }
+        else
+          motion << "a rotation";
+        free += (free.empty() ? "" : ", ") + motion.str();
+      }
+    return free;
+  }
+
+  template <int dim>
+  unsigned int
+  ContactProblem<dim>::points_in_contact() const
+  {
+    unsigned int count = 0;
+    for (const auto &state : contact_states)
+      count += state.in_contact;
+    return Utilities::MPI::sum(count, mpi_communicator);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::close_nearest_points()
+  {
+    // Nothing touches and the Dirichlet conditions leave a rigid motion free:
+    // the loads alone cannot bring the body onto the obstacle in a
+    // quasi-static step (its system is singular). It is put on the obstacle
+    // by its points nearest to it, as a body lowered until it touches.
+    double nearest = std::numeric_limits<double>::max();
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      nearest = std::min(nearest, state.pairing.gap(k.position));
+    });
+    nearest = Utilities::MPI::min(nearest, mpi_communicator);
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      state.in_contact = state.pairing.gap(k.position) <= nearest + touching_gap;
+    });
+    pcout << "  nothing touches the obstacle and the Dirichlet conditions leave "
+          << free_rigid_motions << " free: the " << points_in_contact()
+          << " contact point(s) nearest to it (gap " << nearest << " mm) start in contact\n";
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_pair_locks() const
+  {
+    // Volumetric locking: with a bulk modulus far above the shear modulus,
+    // K/G = 2(1 + ν)/(3(1 − 2ν)), low-order displacements cannot deform at
+    // constant volume and the body answers far too stiffly (a block of
+    // ν = 0.4999 pressed on a plane with Q1/P1: 3.6 times the normal force of
+    // Q2/P2). Q1 locks from K/G ≈ 50 (ν ≈ 0.49), Q2 much later.
+    const double limit = fe_pair->displacement_degree() == 1 ? 0.49 : 0.4999;
+    for (const auto &material : materials)
+      {
+        const double nu = material.model->poissons_ratio();
+        if (nu < limit)
+          continue;
+        pcout << "WARNING: " << material.slot << ": Poisson's ratio " << nu << " (bulk modulus "
+              << 2. * (1. + nu) / (3. * (1. - 2. * nu))
+              << " times the shear modulus) with displacements of degree "
+              << fe_pair->displacement_degree()
+              << " (Contact/Finite element pair = " << contact_parameters.fe_pair
+              << "): the body locks volumetrically, its displacements and forces are far too "
+                 "stiff. Use quadratic displacements (Q2/P1, Q2/P2), which lock much later; no "
+                 "formulation here is locking-free yet.\n";
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_body_behind_obstacle() const
+  {
+    if (master_surface)
+      return;
+    // most of the body on the wrong side of the surface: the obstacle's normal
+    // points into the body (g_n = (x − x̄)·n < 0 means penetration)
+    const double tolerance = 1e-8 * GridTools::diameter(triangulation);
+    unsigned int behind = 0, vertices = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            ++vertices;
+            behind += obstacle->project(cell->vertex(v)).gap(cell->vertex(v)) < -tolerance;
+          }
+    behind   = Utilities::MPI::sum(behind, mpi_communicator);
+    vertices = Utilities::MPI::sum(vertices, mpi_communicator);
+    if (2 * behind > vertices)
+      pcout << "WARNING: " << behind << " of " << vertices
+            << " cell vertices lie behind the obstacle's surface (negative gap) before the first "
+               "step. The obstacle's normal must point out of the obstacle, towards the body: "
+               "check the `Obstacle` entries (a plane's Normal, for instance).\n";
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::choose_augmentation_parameters()
+  {
+    if (!contact_parameters.r_n_automatic && !contact_parameters.r_t_automatic)
+      return;
+    double h = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            h = std::max(h, cell->face(f)->diameter());
+    h = Utilities::MPI::max(h, mpi_communicator);
+    AssertThrow(h > 0., ExcMessage("the contact boundary has no faces"));
+    // E of the softest body at the contact (slave or master): with a rigid
+    // obstacle the slave's; with two bodies the softer one's, because there the
+    // solution depends on r_n (doc/formulation.md, two deformable bodies) and the
+    // rigid limit of a stiffening master must keep the slave's r_n
+    double E = std::numeric_limits<double>::max();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              (contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0 ||
+               contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0))
+            E = std::min(E, material_of(cell).youngs_modulus());
+    E = Utilities::MPI::min(E, mpi_communicator);
+    if (contact_parameters.r_n_automatic)
+      {
+        contact_parameters.r_n =
+            contact_parameters.r_n_factor * Contact::automatic_r_n_constant * E / h;
+        pcout << "  r_n = automatic: " << contact_parameters.r_n_factor << " x "
+              << Contact::automatic_r_n_constant << " E/h = " << contact_parameters.r_n
+              << " N/mm^3 (E = " << E << " MPa, h = " << h << " mm)\n";
+      }
+    if (contact_parameters.r_t_automatic)
+      {
+        // without prescribed motion, the contact mesh size is the length scale
+        const double increment = largest_dirichlet_increment();
+        const double length    = increment > 0. ? increment : h;
+        contact_parameters.r_t =
+            contact_parameters.r_t_factor * Contact::automatic_r_t_constant / length;
+        pcout << "  r_t = automatic: " << contact_parameters.r_t_factor << " x "
+              << Contact::automatic_r_t_constant << "/l = " << contact_parameters.r_t
+              << " 1/mm (l = " << length << " mm, "
+              << (increment > 0. ? "the largest prescribed displacement increment of a load step"
+                                 : "h: no prescribed displacement increment")
+              << ")\n";
+      }
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::largest_dirichlet_increment()
+  {
+    // The body starts undeformed (u = 0), so the first step's increment is
+    // the value at the end of that step, whatever the function gives at t = 0.
+    const double   step      = load_stepping.end_time / load_stepping.n_steps;
+    double         increment = 0.;
+    Vector<double> before(dim), after(dim);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+        for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
+          {
+            before = 0.;
+            if (k > 0)
+              {
+                bc.displacement->set_time(k * step);
+                bc.displacement->vector_value(vertex, before);
+              }
+            bc.displacement->set_time((k + 1) * step);
+            bc.displacement->vector_value(vertex, after);
+            double norm_squared = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (bc.components[d])
+                norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
+            increment = std::max(increment, std::sqrt(norm_squared));
+          }
+      });
+    for (const auto &bc : boundary_conditions.dirichlet)
+      bc.displacement->check_finite(mpi_communicator);
+    return Utilities::MPI::max(increment, mpi_communicator);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_dirichlet_not_ramped() const
+  {
+    // A prescribed displacement that is not zero at t = 0 is applied whole in
+    // the first load step, and cutting that step does not make it smaller.
+    Vector<double> value(dim);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      {
+        double largest = 0.;
+        bc.displacement->set_time(0.);
+        for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+          // (not noted as a failure: the run never evaluates t = 0)
+          bc.displacement->Functions::ParsedFunction<dim>::vector_value(vertex, value);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (bc.components[d] && std::isfinite(value[d]))
+              largest = std::max(largest, std::abs(value[d]));
+        });
+        largest = Utilities::MPI::max(largest, mpi_communicator);
+        if (largest > 0.)
+          pcout << "WARNING: " << bc.displacement->name()
+                << ": the prescribed displacement is not zero at t = 0 (up to " << largest
+                << " mm); the body starts undeformed, so the first load step applies it at "
+                   "once, and cutting that step does not reduce it. Make it grow from zero "
+                   "with t (e.g. multiply it by t / End time) to spread it over the steps.\n";
+      }
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                        \
+  template std::string  ContactProblem<dim>::rigid_motions_left_free() const;      \
+  template unsigned int ContactProblem<dim>::points_in_contact() const;            \
+  template void         ContactProblem<dim>::close_nearest_points();               \
+  template void         ContactProblem<dim>::warn_if_pair_locks() const;           \
+  template void         ContactProblem<dim>::warn_if_body_behind_obstacle() const; \
+  template void         ContactProblem<dim>::choose_augmentation_parameters();     \
+  template double       ContactProblem<dim>::largest_dirichlet_increment();        \
+  template void         ContactProblem<dim>::warn_if_dirichlet_not_ramped() const;
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian
