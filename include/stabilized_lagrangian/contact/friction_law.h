@@ -32,10 +32,6 @@ namespace StabilizedLagrangian
       virtual double
       threshold_derivative(const double contact_pressure) const = 0;
 
-      /** @brief Coefficient used to scale r_t (μ for Coulomb). */
-      virtual double
-      friction_coefficient() const = 0;
-
       /** @brief True when the threshold depends on the pressure (a friction loop is needed). */
       virtual bool
       threshold_depends_on_pressure() const = 0;
