@@ -10,7 +10,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief Interface of the friction laws: the threshold s as a function of the
-     * contact pressure. With s frozen the problem is a Tresca problem (DESIGN §3).
+     * contact pressure. With s frozen the problem is a Tresca problem (doc/formulation.md,
+     * "Nested loops").
      */
     class Interface
     {
