@@ -23,7 +23,10 @@ namespace StabilizedLagrangian
   {
     using namespace dealii;
 
-    /** @brief Contact quadrature: statuses live at these points (DESIGN §4). */
+    /**
+     * @brief Contact quadrature: statuses live at these points
+     * (doc/formulation.md, "Unknowns and spaces").
+     */
     enum class ContactQuadrature
     {
       gauss,
@@ -171,7 +174,9 @@ namespace StabilizedLagrangian
       newton
     };
 
-    /** @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops (DESIGN §3).
+    /**
+     * @brief `Nonlinear solver` subsection: limits and tolerances of the nested loops
+     * (doc/formulation.md, "Nested loops").
      */
     struct NonlinearSolver
     {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 namespace StabilizedLagrangian
@@ -158,6 +159,77 @@ namespace StabilizedLagrangian
     }
   };
 
+  namespace internal
+  {
+    /**
+     * @brief Register @p PluginType in the registry of @p InterfaceType: its
+     * parameters are declared by `PluginType::declare_parameters(prm)` and it is
+     * built by the constructor `PluginType(const ParameterHandler &)`, which
+     * reads the plug-in's own subsection.
+     */
+    template <typename InterfaceType, typename PluginType>
+    bool
+    register_plugin(const std::string &name, const std::string &description)
+    {
+      return PluginRegistry<InterfaceType>::add(
+          name,
+          description,
+          &PluginType::declare_parameters,
+          [](const dealii::ParameterHandler &prm) -> std::unique_ptr<InterfaceType> {
+            return std::make_unique<PluginType>(prm);
+          });
+    }
+
+    /**
+     * @brief register_plugin() for the plug-ins of a dimension-dependent
+     * interface: registers `PluginTemplate<dim>` for dim = 2 and 3.
+     */
+    template <template <int> class InterfaceTemplate, template <int> class PluginTemplate>
+    bool
+    register_plugin(const std::string &name, const std::string &description)
+    {
+      register_plugin<InterfaceTemplate<2>, PluginTemplate<2>>(name, description);
+      return register_plugin<InterfaceTemplate<3>, PluginTemplate<3>>(name, description);
+    }
+
+    /**
+     * @brief Register a plug-in that declares no parameters, built as
+     * `PluginType(constructor_arguments...)`.
+     */
+    template <typename InterfaceType, typename PluginType, typename... Arguments>
+    bool
+    register_plugin_without_parameters(const std::string &name,
+                                       const std::string &description,
+                                       const Arguments &...constructor_arguments)
+    {
+      return PluginRegistry<InterfaceType>::add(
+          name,
+          description,
+          [](dealii::ParameterHandler &) {},
+          [=](const dealii::ParameterHandler &) -> std::unique_ptr<InterfaceType> {
+            return std::make_unique<PluginType>(constructor_arguments...);
+          });
+    }
+
+    /**
+     * @brief register_plugin_without_parameters() for dim = 2 and 3.
+     */
+    template <template <int> class InterfaceTemplate,
+              template <int>
+              class PluginTemplate,
+              typename... Arguments>
+    bool
+    register_plugin_without_parameters(const std::string &name,
+                                       const std::string &description,
+                                       const Arguments &...constructor_arguments)
+    {
+      register_plugin_without_parameters<InterfaceTemplate<2>, PluginTemplate<2>>(
+          name, description, constructor_arguments...);
+      return register_plugin_without_parameters<InterfaceTemplate<3>, PluginTemplate<3>>(
+          name, description, constructor_arguments...);
+    }
+  } // namespace internal
+
   /**
    * @brief Thrown for invalid user input; main() prints the message and exits non-zero.
    */
@@ -167,3 +239,34 @@ namespace StabilizedLagrangian
     using std::runtime_error::runtime_error;
   };
 } // namespace StabilizedLagrangian
+
+#define SL_PLUGIN_CONCATENATE_(a, b) a##b
+#define SL_PLUGIN_CONCATENATE(a, b) SL_PLUGIN_CONCATENATE_(a, b)
+
+/**
+ * @brief Register a plug-in in one line, at namespace scope of its `.cc` file:
+ *
+ *     SL_REGISTER_PLUGIN(Interface, LinearElastic, "linear elastic", "isotropic ...");
+ *
+ * @p name is the value of the `Model` entry that selects the plug-in (and the
+ * name of its subsection), @p description its documentation. The plug-in
+ * provides `static void declare_parameters(ParameterHandler &)` and a
+ * constructor from the `const ParameterHandler &` of its subsection. When
+ * @p interface and @p plugin are class templates over the dimension, the
+ * plug-in is registered for dim = 2 and 3.
+ */
+#define SL_REGISTER_PLUGIN(interface, plugin, name, description)                              \
+  [[maybe_unused]] static const bool SL_PLUGIN_CONCATENATE(sl_plugin_registered_, __LINE__) = \
+      ::StabilizedLagrangian::internal::register_plugin<interface, plugin>(name, description)
+
+/**
+ * @brief Register in one line a plug-in that declares no parameters and is
+ * built from fixed constructor arguments (the FE pairs), for dim = 2 and 3
+ * when @p interface and @p plugin are class templates over the dimension:
+ *
+ *     SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(FEPair, LagrangeFacePair, "Q1/P1", "...", 1, 1, true);
+ */
+#define SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(interface, plugin, name, description, ...)       \
+  [[maybe_unused]] static const bool SL_PLUGIN_CONCATENATE(sl_plugin_registered_, __LINE__) =  \
+      ::StabilizedLagrangian::internal::register_plugin_without_parameters<interface, plugin>( \
+          name, description, __VA_ARGS__)

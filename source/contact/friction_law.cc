@@ -20,6 +20,11 @@ namespace StabilizedLagrangian
                            std::to_string(mu) + ".");
       }
 
+      explicit Coulomb(const ParameterHandler &prm)
+          : Coulomb(prm.get_double("Friction coefficient"))
+      {
+      }
+
       static void
       declare_parameters(ParameterHandler &prm)
       {
@@ -48,12 +53,6 @@ namespace StabilizedLagrangian
         return contact_pressure > 0. ? mu : 0.;
       }
 
-      double
-      friction_coefficient() const override
-      {
-        return mu;
-      }
-
       bool
       threshold_depends_on_pressure() const override
       {
@@ -73,6 +72,11 @@ namespace StabilizedLagrangian
       {
         if (!(s >= 0.))
           throw InputError("Contact/Friction law/Tresca/Threshold must be >= 0.");
+      }
+
+      explicit Tresca(const ParameterHandler &prm)
+          : Tresca(prm.get_double("Threshold"))
+      {
       }
 
       static void
@@ -100,12 +104,6 @@ namespace StabilizedLagrangian
         return 0.;
       }
 
-      double
-      friction_coefficient() const override
-      {
-        return 1.;
-      }
-
       bool
       threshold_depends_on_pressure() const override
       {
@@ -116,22 +114,7 @@ namespace StabilizedLagrangian
       const double s;
     };
 
-    namespace
-    {
-      const bool registered_coulomb =
-          Registry::add("Coulomb",
-                        "Coulomb friction, threshold μ λ_n",
-                        &Coulomb::declare_parameters,
-                        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
-                          return std::make_unique<Coulomb>(prm.get_double("Friction coefficient"));
-                        });
-      const bool registered_tresca =
-          Registry::add("Tresca",
-                        "Tresca friction, fixed threshold",
-                        &Tresca::declare_parameters,
-                        [](const ParameterHandler &prm) -> std::unique_ptr<Interface> {
-                          return std::make_unique<Tresca>(prm.get_double("Threshold"));
-                        });
-    } // namespace
-  }   // namespace FrictionLaws
+    SL_REGISTER_PLUGIN(Interface, Coulomb, "Coulomb", "Coulomb friction, threshold μ λ_n");
+    SL_REGISTER_PLUGIN(Interface, Tresca, "Tresca", "Tresca friction, fixed threshold");
+  } // namespace FrictionLaws
 } // namespace StabilizedLagrangian

@@ -65,79 +65,63 @@ namespace StabilizedLagrangian
       const bool         continuous, coarse;
     };
 
-    namespace
-    {
-      template <int dim>
-      void
-      add_pair(const std::string &name,
-               const std::string &description,
-               const unsigned int displacement_degree,
-               const unsigned int multiplier_degree,
-               const bool         continuous_multiplier,
-               const bool         coarser_mesh = false)
-      {
-        Registry<dim>::add(
-            name,
-            description,
-            [](ParameterHandler &) {},
-            [=](const ParameterHandler &) -> std::unique_ptr<FEPair<dim>> {
-              return std::make_unique<LagrangeFacePair<dim>>(
-                  displacement_degree, multiplier_degree, continuous_multiplier, coarser_mesh);
-            });
-      }
-
-      template <int dim>
-      bool
-      register_pairs()
-      {
-        add_pair<dim>("Q1/P1",
-                      "Q1 displacement, continuous piecewise-linear multipliers on the "
-                      "displacement's boundary mesh (the seed's choice; inf-sup stable)",
-                      1,
-                      1,
-                      true);
-        add_pair<dim>("Q2/P1",
-                      "Q2 displacement, continuous piecewise-linear multipliers on the "
-                      "displacement's boundary mesh (inf-sup stable)",
-                      2,
-                      1,
-                      true);
-        add_pair<dim>("Q2/P2",
-                      "Q2 displacement, continuous piecewise-quadratic multipliers on the "
-                      "displacement's boundary mesh (inf-sup stable: the multiplier space is "
-                      "the displacement trace)",
-                      2,
-                      2,
-                      true);
-        add_pair<dim>("Q1/P1 coarse",
-                      "Q1 displacement, continuous piecewise-linear multipliers on the "
-                      "contact mesh coarsened once (mesh size 2h: the parents of the contact "
-                      "faces; inf-sup stable, fewer multipliers). Needs a contact boundary "
-                      "refined at least once and without hanging nodes",
-                      1,
-                      1,
-                      true,
-                      true);
-        add_pair<dim>("Q1/P0",
-                      "Q1 displacement, multipliers constant on each boundary face: violates "
-                      "the inf-sup condition on the same mesh (the face-alternating multiplier "
-                      "is seen only at the ends of Γc, β_h → 0 under refinement), though the "
-                      "system stays invertible",
-                      1,
-                      0,
-                      false);
-        add_pair<dim>("Q1/P2",
-                      "Q1 displacement, continuous piecewise-quadratic multipliers: richer "
-                      "than the displacement trace, violates the inf-sup condition (β_h = 0: "
-                      "the Newton system is singular where contact is active; see Linear "
-                      "solver/Null pivot detection)",
-                      1,
-                      2,
-                      true);
-        return true;
-      }
-      const bool registered_2d = register_pairs<2>();
-      const bool registered_3d = register_pairs<3>();
-    } // namespace
-  }   // namespace Discretization
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q1/P1",
+        "Q1 displacement, continuous piecewise-linear multipliers on the displacement's boundary "
+        "mesh (the seed's choice; inf-sup stable)",
+        1,
+        1,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q2/P1",
+        "Q2 displacement, continuous piecewise-linear multipliers on the displacement's boundary "
+        "mesh (inf-sup stable)",
+        2,
+        1,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q2/P2",
+        "Q2 displacement, continuous piecewise-quadratic multipliers on the displacement's "
+        "boundary mesh (inf-sup stable: the multiplier space is the displacement trace)",
+        2,
+        2,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q1/P1 coarse",
+        "Q1 displacement, continuous piecewise-linear multipliers on the contact mesh coarsened "
+        "once (mesh size 2h: the parents of the contact faces; inf-sup stable, fewer "
+        "multipliers). Needs a contact boundary refined at least once and without hanging nodes",
+        1,
+        1,
+        true,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q1/P0",
+        "Q1 displacement, multipliers constant on each boundary face: violates the inf-sup "
+        "condition on the same mesh (the face-alternating multiplier is seen only at the ends of "
+        "Γc, β_h → 0 under refinement), though the system stays invertible",
+        1,
+        0,
+        false);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q1/P2",
+        "Q1 displacement, continuous piecewise-quadratic multipliers: richer than the "
+        "displacement trace, violates the inf-sup condition (β_h = 0: the Newton system is "
+        "singular where contact is active; see Linear solver/Null pivot detection)",
+        1,
+        2,
+        true);
+  } // namespace Discretization
 } // namespace StabilizedLagrangian

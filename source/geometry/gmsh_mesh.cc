@@ -522,22 +522,10 @@ namespace StabilizedLagrangian
       std::map<std::string, types::material_id> bodies;
     };
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_gmsh()
-      {
-        return Registry<dim>::add(
-            "gmsh",
-            "a Gmsh mesh (.msh or .geo) whose physical groups name boundaries and bodies",
-            &GmshMesh<dim>::declare_parameters,
-            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-              return std::make_unique<GmshMesh<dim>>(prm);
-            });
-      }
-      const bool registered_2d = register_gmsh<2>();
-      const bool registered_3d = register_gmsh<3>();
-    } // namespace
-  }   // namespace Geometry
+    SL_REGISTER_PLUGIN(
+        Interface,
+        GmshMesh,
+        "gmsh",
+        "a Gmsh mesh (.msh or .geo) whose physical groups name boundaries and bodies");
+  } // namespace Geometry
 } // namespace StabilizedLagrangian

@@ -234,30 +234,15 @@ namespace StabilizedLagrangian
       const double       refinement_radius, contact_radius;
     };
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_geometries()
-      {
-        Registry<dim>::add("block",
-                           "rectangular block resting on y = 0 (z = 0 in 3D)",
-                           &Block<dim>::declare_parameters,
-                           [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-                             return std::make_unique<Block<dim>>(prm);
-                           });
-        return Registry<dim>::add(
-            "half ball",
-            "half disc / half ball touching y = 0 (z = 0) at the origin "
-            "(Hertz problem)",
-            &HalfBall<dim>::declare_parameters,
-            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-              return std::make_unique<HalfBall<dim>>(prm);
-            });
-      }
-      const bool registered_2d = register_geometries<2>();
-      const bool registered_3d = register_geometries<3>();
-    } // namespace
+    SL_REGISTER_PLUGIN(Interface,
+                       Block,
+                       "block",
+                       "rectangular block resting on y = 0 (z = 0 in 3D)");
+    SL_REGISTER_PLUGIN(Interface,
+                       HalfBall,
+                       "half ball",
+                       "half disc / half ball touching y = 0 (z = 0) at the origin "
+                       "(Hertz problem)");
 
   } // namespace Geometry
 } // namespace StabilizedLagrangian

@@ -48,6 +48,16 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    J2Plasticity<dim>::J2Plasticity(const ParameterHandler &prm)
+        : J2Plasticity(prm.get_double("Young's modulus"),
+                       prm.get_double("Poisson's ratio"),
+                       prm.get("Kinematics") == "finite strain" ? Kinematics::finite_strain
+                                                                : Kinematics::small_strain,
+                       HardeningCurve::parse(prm.get("Hardening curve")))
+    {
+    }
+
+    template <int dim>
     void
     J2Plasticity<dim>::declare_parameters(ParameterHandler &prm)
     {
@@ -247,28 +257,10 @@ namespace StabilizedLagrangian
     template class J2Plasticity<2>;
     template class J2Plasticity<3>;
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_j2_plasticity()
-      {
-        return Registry<dim>::add(
-            "J2 plasticity",
-            "von Mises elasto-plasticity with isotropic hardening from a tabulated traction "
-            "curve, small or finite strain (plane strain in 2D)",
-            &J2Plasticity<dim>::declare_parameters,
-            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-              return std::make_unique<J2Plasticity<dim>>(
-                  prm.get_double("Young's modulus"),
-                  prm.get_double("Poisson's ratio"),
-                  prm.get("Kinematics") == "finite strain" ? Kinematics::finite_strain
-                                                           : Kinematics::small_strain,
-                  HardeningCurve::parse(prm.get("Hardening curve")));
-            });
-      }
-      const bool registered_2d = register_j2_plasticity<2>();
-      const bool registered_3d = register_j2_plasticity<3>();
-    } // namespace
-  }   // namespace Materials
+    SL_REGISTER_PLUGIN(Interface,
+                       J2Plasticity,
+                       "J2 plasticity",
+                       "von Mises elasto-plasticity with isotropic hardening from a tabulated "
+                       "traction curve, small or finite strain (plane strain in 2D)");
+  } // namespace Materials
 } // namespace StabilizedLagrangian

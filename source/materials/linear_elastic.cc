@@ -28,6 +28,12 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    LinearElastic<dim>::LinearElastic(const ParameterHandler &prm)
+        : LinearElastic(prm.get_double("Young's modulus"), prm.get_double("Poisson's ratio"))
+    {
+    }
+
+    template <int dim>
     void
     LinearElastic<dim>::declare_parameters(ParameterHandler &prm)
     {
@@ -56,23 +62,9 @@ namespace StabilizedLagrangian
     template class LinearElastic<2>;
     template class LinearElastic<3>;
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_linear_elastic()
-      {
-        return Registry<dim>::add(
-            "linear elastic",
-            "isotropic linear elasticity, small strain (plane strain in 2D)",
-            &LinearElastic<dim>::declare_parameters,
-            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-              return std::make_unique<LinearElastic<dim>>(prm.get_double("Young's modulus"),
-                                                          prm.get_double("Poisson's ratio"));
-            });
-      }
-      const bool registered_2d = register_linear_elastic<2>();
-      const bool registered_3d = register_linear_elastic<3>();
-    } // namespace
-  }   // namespace Materials
+    SL_REGISTER_PLUGIN(Interface,
+                       LinearElastic,
+                       "linear elastic",
+                       "isotropic linear elasticity, small strain (plane strain in 2D)");
+  } // namespace Materials
 } // namespace StabilizedLagrangian

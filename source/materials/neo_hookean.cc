@@ -19,6 +19,12 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    NeoHookean<dim>::NeoHookean(const ParameterHandler &prm)
+        : NeoHookean(prm.get_double("C10"), prm.get_double("Poisson's ratio"))
+    {
+    }
+
+    template <int dim>
     void
     NeoHookean<dim>::declare_parameters(ParameterHandler &prm)
     {
@@ -62,23 +68,10 @@ namespace StabilizedLagrangian
     template class NeoHookean<2>;
     template class NeoHookean<3>;
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_neo_hookean()
-      {
-        return Registry<dim>::add(
-            "neo-Hookean",
-            "compressible neo-Hookean hyperelasticity, finite strain (plane strain in 2D)",
-            &NeoHookean<dim>::declare_parameters,
-            [](const ParameterHandler &prm) -> std::unique_ptr<Interface<dim>> {
-              return std::make_unique<NeoHookean<dim>>(prm.get_double("C10"),
-                                                       prm.get_double("Poisson's ratio"));
-            });
-      }
-      const bool registered_2d = register_neo_hookean<2>();
-      const bool registered_3d = register_neo_hookean<3>();
-    } // namespace
-  }   // namespace Materials
+    SL_REGISTER_PLUGIN(
+        Interface,
+        NeoHookean,
+        "neo-Hookean",
+        "compressible neo-Hookean hyperelasticity, finite strain (plane strain in 2D)");
+  } // namespace Materials
 } // namespace StabilizedLagrangian

@@ -136,16 +136,11 @@ namespace StabilizedLagrangian
                           "Normal of the plane pointing out of the obstacle, towards the body.");
       }
 
-      static std::unique_ptr<Interface<dim>>
-      create(const ParameterHandler &prm)
+      /** @brief The plane of the `Point` and `Normal` entries. */
+      explicit Plane(const ParameterHandler &prm)
+          : Plane(to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
+                  nonzero_normal(prm))
       {
-        const Point<dim> normal =
-            to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
-        if (normal.norm() == 0.)
-          throw InputError("Obstacle/plane/Normal must not be the zero vector.");
-        return std::make_unique<Plane<dim>>(
-            to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
-            Tensor<1, dim>(normal));
       }
 
       Pairing<dim>
@@ -165,6 +160,16 @@ namespace StabilizedLagrangian
       }
 
     private:
+      static Tensor<1, dim>
+      nonzero_normal(const ParameterHandler &prm)
+      {
+        const Point<dim> normal =
+            to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
+        if (normal.norm() == 0.)
+          throw InputError("Obstacle/plane/Normal must not be the zero vector.");
+        return Tensor<1, dim>(normal);
+      }
+
       const Point<dim>                          point;
       const Tensor<1, dim>                      normal;
       const std::array<Tensor<1, dim>, dim - 1> tangents;
@@ -194,12 +199,11 @@ namespace StabilizedLagrangian
         prm.declare_entry("Radius", "100", Patterns::Double(), "Radius (mm), > 0.");
       }
 
-      static std::unique_ptr<Interface<dim>>
-      create(const ParameterHandler &prm)
+      /** @brief The ball of the `Center` and `Radius` entries. */
+      explicit Ball(const ParameterHandler &prm)
+          : Ball(to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
+                 prm.get_double("Radius"))
       {
-        return std::make_unique<Ball<dim>>(
-            to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
-            prm.get_double("Radius"));
       }
 
       Pairing<dim>
@@ -238,24 +242,11 @@ namespace StabilizedLagrangian
       const double     radius;
     };
 
-    namespace
-    {
-      template <int dim>
-      bool
-      register_obstacles()
-      {
-        Registry<dim>::add("plane",
-                           "rigid half-space bounded by a plane",
-                           &Plane<dim>::declare_parameters,
-                           &Plane<dim>::create);
-        return Registry<dim>::add("ball",
-                                  "rigid disc (2D cylinder) or sphere (3D); the body is outside",
-                                  &Ball<dim>::declare_parameters,
-                                  &Ball<dim>::create);
-      }
-      const bool registered_2d = register_obstacles<2>();
-      const bool registered_3d = register_obstacles<3>();
-    } // namespace
+    SL_REGISTER_PLUGIN(Interface, Plane, "plane", "rigid half-space bounded by a plane");
+    SL_REGISTER_PLUGIN(Interface,
+                       Ball,
+                       "ball",
+                       "rigid disc (2D cylinder) or sphere (3D); the body is outside");
 
     template std::array<Tensor<1, 2>, 1>
     tangent_basis<2>(const Tensor<1, 2> &);

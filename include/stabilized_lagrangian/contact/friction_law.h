@@ -10,7 +10,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief Interface of the friction laws: the threshold s as a function of the
-     * contact pressure. With s frozen the problem is a Tresca problem (DESIGN §3).
+     * contact pressure. With s frozen the problem is a Tresca problem (doc/formulation.md,
+     * "Nested loops").
      */
     class Interface
     {
@@ -31,10 +32,6 @@ namespace StabilizedLagrangian
       /** @brief ds/dλ_n, for the generalized Newton that linearises the threshold. */
       virtual double
       threshold_derivative(const double contact_pressure) const = 0;
-
-      /** @brief Coefficient used to scale r_t (μ for Coulomb). */
-      virtual double
-      friction_coefficient() const = 0;
 
       /** @brief True when the threshold depends on the pressure (a friction loop is needed). */
       virtual bool

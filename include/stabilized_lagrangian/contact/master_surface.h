@@ -26,9 +26,10 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
-     * @brief The master surface of a second deformable body (DESIGN §2): the
-     * faces of the master boundary in their deformed configuration, and the
-     * closest-point projection of slave points onto them.
+     * @brief The master surface of a second deformable body (doc/formulation.md,
+     * "Two deformable bodies"): the faces of the master boundary in their
+     * deformed configuration, and the closest-point projection of slave points
+     * onto them.
      *
      * Every rank holds the whole master surface (its reference geometry and
      * the global indices of its displacement DoFs), gathered once per mesh,

@@ -5,8 +5,9 @@
 namespace StabilizedLagrangian
 {
   /**
-   * Point-wise ingredients of the stabilized Lagrangian (DESIGN §2, seed
-   * eqs. (3)–(8)), written once and used by every loop and by the output.
+   * Point-wise ingredients of the stabilized Lagrangian (doc/formulation.md,
+   * "Signs and notation" and "Point-wise quantities"; seed eqs. (3)–(8)),
+   * written once and used by every loop and by the output.
    */
   namespace Contact
   {
@@ -103,9 +104,10 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The stabilized Lagrangian at one contact point for a given contact
-     * status χ and friction threshold s (DESIGN §2): the tractions it applies to
-     * the slave, the residuals of the multiplier equations, and the coefficients
-     * of their Jacobian. The assembly only contracts these with shape functions.
+     * status χ and friction threshold s (doc/formulation.md, "Residual"): the
+     * tractions it applies to the slave, the residuals of the multiplier
+     * equations, and the coefficients of their Jacobian. The assembly only
+     * contracts these with shape functions.
      *
      * The nested fixed points freeze χ and s; the generalized Newton evaluates
      * them at the current iterate, which gives the same coefficients (χ is

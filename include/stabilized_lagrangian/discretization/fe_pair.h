@@ -12,7 +12,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief A pair of finite element spaces: displacement in the bodies and
-     * multipliers (λ_n and Λ together) on the contact boundary only (DESIGN §4).
+     * multipliers (λ_n and Λ together) on the contact boundary only
+     * (doc/formulation.md, "Unknowns and spaces").
      *
      * The multiplier element is a face element (FE_TraceQ, FE_FaceQ) on the
      * same triangulation; only its degrees of freedom on Γc are kept.

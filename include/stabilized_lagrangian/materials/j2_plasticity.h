@@ -73,6 +73,9 @@ namespace StabilizedLagrangian
                    const Kinematics                              kinematics,
                    const std::vector<std::pair<double, double>> &hardening_points);
 
+      /** @brief Model from its `.prm` subsection (declare_parameters()). */
+      explicit J2Plasticity(const ParameterHandler &prm);
+
       /**
        * @brief Declare `Young's modulus`, `Poisson's ratio`, `Kinematics` and
        * `Hardening curve`.

@@ -20,6 +20,9 @@ namespace StabilizedLagrangian
        */
       LinearElastic(const double youngs_modulus, const double poissons_ratio);
 
+      /** @brief Model from its `.prm` subsection (declare_parameters()). */
+      explicit LinearElastic(const ParameterHandler &prm);
+
       /** @brief Declare `Young's modulus` and `Poisson's ratio`. */
       static void
       declare_parameters(ParameterHandler &prm);

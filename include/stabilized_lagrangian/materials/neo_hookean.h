@@ -30,6 +30,9 @@ namespace StabilizedLagrangian
        */
       NeoHookean(const double c10, const double poissons_ratio);
 
+      /** @brief Model from its `.prm` subsection (declare_parameters()). */
+      explicit NeoHookean(const ParameterHandler &prm);
+
       /** @brief Declare `C10` and `Poisson's ratio`. */
       static void
       declare_parameters(ParameterHandler &prm);

@@ -14,7 +14,8 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
-     * @brief Pairing of a slave point with the master surface (DESIGN §2).
+     * @brief Pairing of a slave point with the master surface (doc/formulation.md,
+     * "Signs and notation").
      *
      * The closest point x²(ξ) on the master surface, the unit normal n there
      * pointing out of the master, and dim−1 unit tangents completing an

@@ -22,7 +22,8 @@ namespace StabilizedLagrangian
   };
 
   /**
-   * @brief Statistics of one load step (one row of statistics.csv, DESIGN §3).
+   * @brief Statistics of one load step (one row of statistics.csv; doc/formulation.md,
+   * "Nested loops").
    */
   struct StepStatistics
   {
