@@ -49,7 +49,7 @@ namespace StabilizedLagrangian
     inadmissible_state.clear();
     // the deformable master's pairings, folded into the generalized Newton, are
     // refreshed before the assembly: a new pairing may need a new sparsity pattern
-    if (master_surface && folded(solver_parameters.geometry_method))
+    if (master_surface && loops.linearised(Loop::geometry))
       update_pairings(false);
     assemble_volume(assemble_matrix);
     for (const auto &bc : boundary_conditions.neumann)
@@ -196,7 +196,7 @@ namespace StabilizedLagrangian
     // the generalized Newton's linearised pairing (a plane's does not move; a
     // deformable master's pairing is refreshed at every iterate, not linearised)
     const bool linearise_geometry =
-        folded(solver_parameters.geometry_method) && !master_surface && !obstacle->is_flat();
+        loops.linearised(Loop::geometry) && !master_surface && !obstacle->is_flat();
 
     FullMatrix<double>                   local_matrix;
     Vector<double>                       local_rhs, length_weights;

@@ -263,7 +263,7 @@ namespace StabilizedLagrangian
         friction_law->has_friction(),
         contact_parameters.r_n,
         contact_parameters.r_t,
-        folded(solver_parameters.friction_method)
+        loops.linearised(Loop::friction)
             ? friction_law->threshold_derivative(threshold_pressure(k.contact_pressure))
             : 0.);
   }
@@ -274,12 +274,12 @@ namespace StabilizedLagrangian
                                             ContactKinematics<dim> &k) const
   {
     // (a deformable master's pairings are refreshed before the assembly)
-    if (folded(solver_parameters.geometry_method) && !master_surface)
+    if (loops.linearised(Loop::geometry) && !master_surface)
       state.pairing = obstacle->project(k.position);
     follow_master(state.pairing, k);
-    if (folded(solver_parameters.friction_method) && friction_law->threshold_depends_on_pressure())
+    if (loops.linearised(Loop::friction) && friction_law->threshold_depends_on_pressure())
       state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
-    if (folded(solver_parameters.status_method))
+    if (loops.linearised(Loop::status))
       state.in_contact = status(state, k);
   }
 

@@ -27,6 +27,7 @@ namespace StabilizedLagrangian
     boundary_conditions.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
     solver_parameters.parse_parameters(prm);
+    loops = LoopPolicy(solver_parameters);
     linear_solver_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     adaptive_refinement.parse_parameters(prm);
@@ -52,6 +53,13 @@ namespace StabilizedLagrangian
     TimerOutput::Scope scope(timer, "setup");
     make_grid();
     setup_after_refinement();
+    // a flat obstacle in small strain never moves the pairing; a frictionless
+    // or Tresca law never moves the threshold
+    loops.set_can_change(Loop::geometry,
+                         master_surface || !(obstacle->is_flat() && !finite_strain()));
+    loops.set_can_change(Loop::friction,
+                         friction_law->has_friction() &&
+                             friction_law->threshold_depends_on_pressure());
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
     warn_if_dirichlet_not_ramped();

@@ -30,6 +30,7 @@
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
+#include <stabilized_lagrangian/solver/loop_policy.h>
 
 #include <algorithm>
 #include <functional>
@@ -113,7 +114,8 @@ namespace StabilizedLagrangian
    * file): contact_problem.cc the mesh and the setup, setup_checks.cc the
    * checks of the scene, dofs.cc DoFs, constraints and sparsity,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
-   * nested_loops.cc the load path and the loops, refinement.cc adaptive
+   * load_path.cc the load steps, nested_loops.cc the loops of seed §2.2,
+   * newton.cc the Newton iteration, refinement.cc adaptive
    * refinement, checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test;
    * output in source/postprocessing/output.cc.
    */
@@ -129,7 +131,7 @@ namespace StabilizedLagrangian
     ContactProblem(ParameterHandler &prm, const bool verbose = true);
 
     /**
-     * @brief Solve every load step (nested_loops.cc); returns false if a step could not be solved.
+     * @brief Solve every load step (load_path.cc); returns false if a step could not be solved.
      * @param resume continue from the checkpoint in the output directory
      * (source/solver/checkpoint.cc) instead of starting from rest
      */
@@ -317,13 +319,25 @@ namespace StabilizedLagrangian
       unsigned int consecutive_cuts = 0;
     };
 
-    // --- nested_loops.cc: the load path, the loops of seed §2.2, the generalized Newton ---
+    // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
     /**
      * The whole load path on the current mesh, from rest, or with @p resumed
      * from the state a checkpoint restored.
      */
     bool
     solve_load_path(const bool resumed = false);
+    void
+    apply_dirichlet_values(const double time);
+    void
+    print_step_line(const StepStatistics &stats, const double elapsed) const;
+    /** run_summary.csv of the load path: @p path_work is the work it took, failed attempts included
+     */
+    void
+    write_run_summary(const unsigned int  n_steps,
+                      const double        wall_time,
+                      const WorkCounters &path_work) const;
+
+    // --- nested_loops.cc: the loops of seed §2.2: geometry → friction threshold → status ---
     bool
     solve_load_step(StepStatistics &stats);
     bool
@@ -334,6 +348,32 @@ namespace StabilizedLagrangian
     status_loop(StepStatistics    &stats,
                 const unsigned int geometry_iteration,
                 const unsigned int friction_iteration);
+    unsigned int
+    update_statuses();
+    double
+    update_friction_thresholds();
+    double
+    relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
+    /**
+     * Run @p solve with @p loop folded into the generalized Newton, then
+     * restore the method chosen: the fallback of a fixed point that cycles or
+     * does not converge in its iterations.
+     */
+    bool
+    fold_for_this_step(const Loop loop, const std::function<bool()> &solve);
+    /** The contact status χ of this rank's contact points. */
+    std::vector<unsigned char>
+    contact_statuses() const;
+    /**
+     * Collective: the first of the first @p end of @p seen equal to
+     * @p statuses on every rank, or @p end if none is.
+     */
+    unsigned int
+    first_equal(const std::vector<std::vector<unsigned char>> &seen,
+                const std::vector<unsigned char>              &statuses,
+                unsigned int                                   end) const;
+
+    // --- newton.cc: the Newton loop (nested or generalized), its line search ---
     bool
     newton_loop(StepStatistics    &stats,
                 const unsigned int geometry_iteration,
@@ -369,49 +409,9 @@ namespace StabilizedLagrangian
     /** Print a line-search trial: step length, residual, open/stick/slip counts. */
     void
     log_trial(const double step);
-    unsigned int
-    update_statuses();
-    double
-    update_friction_thresholds();
-    void
-    apply_dirichlet_values(const double time);
-    double
-    relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
-    void
-    print_step_line(const StepStatistics &stats, const double elapsed) const;
-    /** run_summary.csv of the load path: @p path_work is the work it took, failed attempts included
-     */
-    void
-    write_run_summary(const unsigned int  n_steps,
-                      const double        wall_time,
-                      const WorkCounters &path_work) const;
-    /**
-     * Run @p solve with the loop whose method is @p method folded into the
-     * generalized Newton, then restore the method chosen: the fallback of a
-     * fixed point that cycles or does not converge in its iterations.
-     */
-    bool
-    with_loop_folded(Parameters::LoopMethod &method, const std::function<bool()> &solve);
-    /** The contact status χ of this rank's contact points. */
-    std::vector<unsigned char>
-    contact_statuses() const;
     /** Open, stick or slip (Contact::Status) of this rank's contact points at the iterate. */
     std::vector<unsigned char>
     point_statuses();
-    /**
-     * Collective: the first of the first @p end of @p seen equal to
-     * @p statuses on every rank, or @p end if none is.
-     */
-    unsigned int
-    first_equal(const std::vector<std::vector<unsigned char>> &seen,
-                const std::vector<unsigned char>              &statuses,
-                unsigned int                                   end) const;
-    /** Whether @p method folds its loop into the generalized Newton. */
-    static bool
-    folded(const Parameters::LoopMethod method)
-    {
-      return method == Parameters::LoopMethod::newton;
-    }
 
     // --- checkpoint.cc: checkpoints ---
     /** Write a checkpoint of the current state (every rank), replacing the previous one. */
@@ -759,10 +759,11 @@ namespace StabilizedLagrangian
 
     double time = 0.;
     /** reference positions of the points in contact at the end of some step on this mesh */
-    std::vector<Point<dim>>                     active_set;
-    double                                      last_normal_force = 0.;
-    bool                                        verbose;
-    bool                                        geometry_loop_needed = true;
+    std::vector<Point<dim>> active_set;
+    double                  last_normal_force = 0.;
+    bool                    verbose;
+    /** which loops iterate, which are folded into Newton (LoopPolicy) */
+    LoopPolicy                                  loops;
     std::string                                 parameters_used;
     std::vector<std::pair<double, std::string>> pvd_records;
     StatisticsWriter                            statistics;

@@ -1,0 +1,286 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/postprocessing/safe_files.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/linear_solver.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <fstream>
+#include <algorithm>
+#include <iomanip>
+#include <limits>
+#include <regex>
+#include <sstream>
+
+namespace StabilizedLagrangian
+{
+  template <int dim>
+  std::vector<unsigned char>
+  ContactProblem<dim>::point_statuses()
+  {
+    std::vector<unsigned char> statuses;
+    statuses.reserve(contact_states.size());
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      statuses.push_back(static_cast<unsigned char>(point_response(state, k).status()));
+    });
+    return statuses;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::ActiveSetWatch::settling(ContactProblem<dim> &problem)
+  {
+    // Frictionless contact (no point sticks), the contact statuses of a full
+    // step are new (no iterate of this Newton loop had them, so the step does
+    // not close a cycle among the finitely many active sets) and fewer points
+    // open or close than at the last step taken so: the active set settles,
+    // as in the active set method on the normal condition, which converges
+    // without damping. Coulomb's stick/slip switches have no such result (a
+    // full step there wanders among the statuses), and stay with the
+    // backtracking.
+    const auto                        stick    = static_cast<unsigned char>(Contact::Status::stick);
+    const auto                        open     = static_cast<unsigned char>(Contact::Status::open);
+    const std::vector<unsigned char>  statuses = problem.point_statuses();
+    const std::vector<unsigned char> &current  = seen.back();
+    unsigned int                      changes = 0, sticking = 0;
+    for (unsigned int p = 0; p < statuses.size(); ++p)
+      {
+        changes += (statuses[p] == open) != (current[p] == open);
+        sticking += statuses[p] == stick || current[p] == stick;
+      }
+    changes  = Utilities::MPI::sum(changes, problem.mpi_communicator);
+    sticking = Utilities::MPI::sum(sticking, problem.mpi_communicator);
+    if (sticking > 0 || changes == 0 || changes > last_changes ||
+        problem.first_equal(seen, statuses, seen.size()) < seen.size())
+      return false;
+    last_changes = changes;
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::newton_loop(StepStatistics    &stats,
+                                   const unsigned int k,
+                                   const unsigned int j,
+                                   const unsigned int i)
+  {
+    // The first assembly (with the Jacobian) is at the iterate the outer
+    // loops hand over; afterwards the residual at each new iterate comes from
+    // the line search, and the Jacobian is assembled only when another solve
+    // follows.
+    assemble_newton_system(true);
+    bool   jacobian_current  = true;
+    double first_measure     = 0.;
+    double previous_residual = std::numeric_limits<double>::infinity();
+    // the open/stick/slip statuses of the iterates, when Newton decides them
+    const bool     statuses_folded = loops.linearised(Loop::status);
+    ActiveSetWatch watch;
+    for (unsigned int iteration = 0;; ++iteration)
+      {
+        if (!inadmissible_state.empty())
+          {
+            pcout << "  Newton: " << inadmissible_state << "\n";
+            return false;
+          }
+        const double residual = residual_norm();
+        if (!std::isfinite(residual))
+          {
+            pcout << "  Newton: the residual is not finite\n";
+            return false;
+          }
+        const double scaled = scaled_residual().largest();
+        const double measure =
+            solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled ? scaled
+                                                                                        : residual;
+        if (iteration == 0)
+          first_measure = measure;
+        if (output_parameters.log_newton)
+          log_iterate(iteration);
+        const bool   predictor = dirichlet_predictor;
+        const double tolerance =
+            solver_parameters.newton_tolerance *
+            (solver_parameters.newton_criterion == Parameters::ResidualCriterion::relative
+                 ? first_measure
+                 : 1.);
+        if (!predictor && measure <= tolerance)
+          {
+            stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, scaled, 0});
+            stats.newton_iterations += iteration;
+            stats.final_residual = residual;
+            stats.final_scaled   = scaled;
+            return true;
+          }
+        if (iteration == solver_parameters.newton_max_iterations)
+          {
+            pcout << "  Newton: residual " << residual << " N (" << measure
+                  << " against the criterion's tolerance " << tolerance << ") after " << iteration
+                  << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+            return false;
+          }
+        if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
+          {
+            pcout << "  Newton: " << stats.newton_iterations + iteration
+                  << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
+                     "per load step)\n";
+            return false;
+          }
+
+        // nothing in contact and a rigid motion free: the system is singular,
+        // and no smaller load step makes it less so
+        if (!free_rigid_motions.empty() && points_in_contact() == 0)
+          {
+            unrecoverable_failure =
+                "the body is not supported: no contact point is in contact (the loads pull it off "
+                "the obstacle) and the Dirichlet conditions leave " +
+                free_rigid_motions +
+                " free. Hold it by a prescribed displacement, or load it towards the obstacle";
+            pcout << "  Newton: " << unrecoverable_failure << ".\n";
+            return false;
+          }
+        if (statuses_folded)
+          watch.seen.push_back(point_statuses());
+        if (!jacobian_current)
+          assemble_newton_system(true);
+        TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
+        system_rhs *= -1.;
+        bool solved;
+        {
+          TimerOutput::Scope scope(timer, "linear solve");
+          solved = direct_solver->solve(system_matrix, update, system_rhs);
+        }
+        ++work.newton_iterations;
+        if (!direct_solver->last_retry().empty())
+          pcout << "  Newton: " << direct_solver->last_retry() << "\n";
+        if (!solved)
+          {
+            const std::string &error = direct_solver->last_error();
+            pcout << "  Newton: the linear solver failed: " << error << ".\n";
+            // a smaller load step has the same matrix size and structure
+            if (error.find("memory") != std::string::npos ||
+                error.find("work space") != std::string::npos)
+              unrecoverable_failure = "the linear solver failed: " + error;
+            if (error.find("singular") != std::string::npos)
+              pcout << "  The Newton system is singular. Usual "
+                       "causes: a rigid-body motion the boundary conditions leave free; a sticking "
+                       "contact point whose tangential displacement is prescribed (a Dirichlet "
+                       "condition on a node of the contact boundary, with friction: its friction "
+                       "multiplier is then undetermined, and `Linear solver/Null pivot detection "
+                       "= true` picks one of the equivalent values); a pair that violates the "
+                       "inf-sup condition (Q1/P2).\n";
+            return false;
+          }
+        newton_constraints.distribute(update);
+        if (predictor)
+          {
+            // the Dirichlet increment (zero in the update's constrained rows)
+            TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
+            increment = dirichlet_increment;
+            update += increment;
+            dirichlet_predictor = false;
+          }
+        // the predictor step is taken whole: it carries the boundary data
+        line_search(update,
+                    residual,
+                    previous_residual,
+                    predictor ? 0 : solver_parameters.line_search_steps,
+                    statuses_folded ? &watch : nullptr);
+        previous_residual = residual;
+        jacobian_current  = false;
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
+                                   const double                         residual,
+                                   const double                         previous_residual,
+                                   const unsigned int                   max_halvings,
+                                   ActiveSetWatch                      *watch)
+  {
+    // Non-monotone backtracking. With frozen statuses the residual is only
+    // piecewise smooth (stick/slip in P_B, elastic/plastic switches at the
+    // quadrature points), so a full Newton step may raise the residual on the
+    // way to convergence; it is kept when the residual is below that of the
+    // iterate before the current one. Otherwise (a cycle, or a material point
+    // outside its admissible range) the step is halved until the residual
+    // decreases, at most max_halvings times.
+    //
+    // When Newton decides the contact statuses, its full step is that of the
+    // primal-dual active set method (Hintermüller, Ito & Kunisch 2002; Hüeber,
+    // Stadler & Wohlmuth 2008), whose residual rises while the active set is
+    // being found (the iterate solves the equations of a set that is not yet
+    // the right one). That step is taken whole while the active set settles
+    // (ActiveSetWatch::settling).
+    const TrilinosWrappers::MPI::Vector start = solution;
+    double                              step  = 1.;
+    for (unsigned int halving = 0;; ++halving)
+      {
+        solution = start;
+        solution.add(step, update);
+        update_ghosts();
+        assemble_newton_system(false);
+        if (output_parameters.log_newton)
+          log_trial(step);
+        if (halving == max_halvings)
+          return;
+        if (inadmissible_state.empty())
+          {
+            if (halving == 0 && watch != nullptr && watch->settling(*this))
+              return;
+            const double reference = halving == 0 ? previous_residual : residual;
+            if (residual_norm() < (1. - 1e-4 * step) * reference)
+              return;
+          }
+        step /= 2.;
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::log_iterate(const unsigned int iteration) const
+  {
+    const ScaledResidual scaled = scaled_residual();
+    std::ostringstream   line;
+    line << std::setprecision(6) << "    Newton " << iteration << ": residual " << residual_norm()
+         << " N; scaled: force " << scaled.force << ", gap " << scaled.gap << ", slip "
+         << scaled.slip << "\n";
+    pcout << line.str();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::log_trial(const double step)
+  {
+    unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
+    for (const unsigned char status : point_statuses())
+      ++counts[status];
+    std::ostringstream line;
+    line << std::setprecision(6) << "      step length " << step << ": residual " << residual_norm()
+         << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
+         << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
+         << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
+         << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
+    pcout << line.str();
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                   \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                  \
+  template bool                       ContactProblem<dim>::newton_loop(                       \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);      \
+  template void ContactProblem<dim>::line_search(                                             \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *); \
+  template void ContactProblem<dim>::log_iterate(unsigned int) const;                         \
+  template void ContactProblem<dim>::log_trial(double);
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian
