@@ -1,22 +1,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/numerics/vector_tools.h>
-
-#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
-#include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
-#include <stabilized_lagrangian/solver/linear_solver.h>
 
 #include <cmath>
-#include <filesystem>
 #include <functional>
-#include <fstream>
 #include <algorithm>
-#include <iomanip>
-#include <limits>
-#include <regex>
-#include <sstream>
 
 namespace StabilizedLagrangian
 {
