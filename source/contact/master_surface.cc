@@ -222,7 +222,7 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    Obstacles::Pairing<dim>
+    Pairing<dim>
     MasterSurface<dim>::project(const Point<dim> &x) const
     {
       namespace bgi                = boost::geometry::index;
@@ -272,11 +272,11 @@ namespace StabilizedLagrangian
       AssertThrow(best_distance < std::numeric_limits<double>::max(),
                   ExcMessage("the master surface has no faces"));
 
-      Obstacles::Pairing<dim> pairing;
-      Tensor<1, dim>          dx[dim - 1];
+      Pairing<dim>   pairing;
+      Tensor<1, dim> dx[dim - 1];
       pairing.master_point           = position(best_face, best_xi, dx);
       pairing.normal                 = normal(best_face, dx);
-      pairing.tangents               = Obstacles::tangent_basis(pairing.normal);
+      pairing.tangents               = tangent_basis(pairing.normal);
       pairing.master_face            = static_cast<int>(best_face);
       pairing.master_reference_point = best_xi;
       return pairing;
@@ -320,12 +320,13 @@ namespace StabilizedLagrangian
 
     template <int dim>
     void
-    MasterSurface<dim>::shape_values(const unsigned int                    face,
-                                     const Point<dim - 1>                 &xi,
+    MasterSurface<dim>::shape_values(const Pairing<dim>                   &pairing,
                                      std::vector<types::global_dof_index> &dofs,
                                      std::vector<unsigned int>            &components,
                                      std::vector<double>                  &values) const
     {
+      const unsigned int    face = pairing.master_face;
+      const Point<dim - 1> &xi   = pairing.master_reference_point;
       dofs.clear();
       components.clear();
       values.clear();
@@ -339,6 +340,21 @@ namespace StabilizedLagrangian
               values.push_back(N);
             }
         }
+    }
+
+    template <int dim>
+    Tensor<1, dim>
+    MasterSurface<dim>::follow(Pairing<dim>                        &pairing,
+                               const TrilinosWrappers::MPI::Vector &u,
+                               const TrilinosWrappers::MPI::Vector &step_start) const
+    {
+      if (pairing.master_face < 0)
+        return Tensor<1, dim>();
+      const unsigned int    face = pairing.master_face;
+      const Point<dim - 1> &xi   = pairing.master_reference_point;
+      const Tensor<1, dim>  now  = displacement(face, xi, u);
+      pairing.master_point       = reference_point(face, xi) + now;
+      return now - displacement(face, xi, step_start);
     }
 
     template class MasterSurface<2>;

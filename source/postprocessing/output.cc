@@ -160,17 +160,12 @@ namespace StabilizedLagrangian
 
     // the state of the converged iterate, evaluated afresh at a point:
     // pressure, tangential traction, gap, slip increment, status
-    if (master_surface)
-      master_surface->update_configuration(ghosted_solution);
+    partner->update_configuration(ghosted_solution);
     const auto point_values = [&](ContactKinematics<dim> k) {
       ContactPointState<dim> state;
-      state.pairing = pair(k.position);
-      follow_master(state.pairing, k);
-      const double gap = state.pairing.gap(k.position);
-      state.in_contact = Contact::is_in_contact(
-          Contact::augmented_pressure(k.contact_pressure, gap, contact_parameters.r_n));
-      state.friction_threshold = friction_law->threshold(k.contact_pressure);
-      const auto point         = point_response(state, k);
+      evaluate_point_state(state, k, PointRefresh{true, true, true});
+      const double gap   = state.pairing.gap(k.position);
+      const auto   point = point_response(state, k);
 
       std::vector<double> values;
       values.push_back(point.normal_traction());

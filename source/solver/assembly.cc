@@ -1,6 +1,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -8,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -22,6 +25,213 @@ namespace StabilizedLagrangian
      * above round-off even when the body does not deform.
      */
     constexpr double force_scale_floor = 1e-4;
+
+    /**
+     * The local system of one contact face (doc/formulation.md, "Two deformable
+     * bodies"): its unknowns are the slave cell's displacement DoFs, then the
+     * DoFs of the partner's faces paired with the face's points (none for a
+     * rigid obstacle; their shape functions enter with a minus sign: the gap
+     * is (x¹ − x²(ξ))·n), then the face's multipliers.
+     */
+    template <int dim> struct ContactFaceSystem
+    {
+      ContactFaceSystem(const FiniteElement<dim> &fe_u, const FiniteElement<dim> &fe_m)
+          : fe_m(fe_m)
+          , n_u_cell(fe_u.n_dofs_per_cell())
+          , u_component(n_u_cell)
+      {
+        for (unsigned int i = 0; i < n_u_cell; ++i)
+          u_component[i] = fe_u.system_to_component_index(i).first;
+      }
+
+      /** Start a face: its cell's displacement DoFs and its multipliers. */
+      void
+      reinit(const std::vector<types::global_dof_index> &u_dofs,
+             const std::vector<types::global_dof_index> &face_m_dofs,
+             const std::vector<unsigned int>            &face_m_local)
+      {
+        dofs    = u_dofs;
+        m_dofs  = face_m_dofs;
+        m_local = face_m_local;
+        n_m     = m_dofs.size();
+        partner_position.clear();
+        face_partner_dofs.clear();
+        m_component.resize(n_m);
+        for (unsigned int a = 0; a < n_m; ++a)
+          m_component[a] = fe_m.system_to_component_index(m_local[a]).first;
+        psi.resize(n_m);
+      }
+
+      /** Add the partner's DoFs of a point's pairing, once each. */
+      void
+      add_partner_dofs(const Contact::Partner<dim> &partner, const Contact::Pairing<dim> &pairing)
+      {
+        for (const auto dof : partner.pairing_dof_indices(pairing))
+          if (partner_position.emplace(dof, n_u_cell + face_partner_dofs.size()).second)
+            face_partner_dofs.push_back(dof);
+      }
+
+      /** Size the system once the partner's DoFs are known. */
+      void
+      finish_dofs()
+      {
+        n_d                  = n_u_cell + face_partner_dofs.size();
+        const unsigned int n = n_d + n_m;
+        matrix.reinit(n, n);
+        rhs.reinit(n);
+        length_weights.reinit(n);
+        dofs.insert(dofs.end(), face_partner_dofs.begin(), face_partner_dofs.end());
+        dofs.insert(dofs.end(), m_dofs.begin(), m_dofs.end());
+        phi.resize(n_d);
+        normal_shape.resize(n_d);
+        tangential_shape.resize(n_d);
+        slip_derivative.resize(n_d);
+      }
+
+      /**
+       * The shape functions at point @p q: φ_j of the displacements (slave,
+       * then partner), φ_j·n, t_α·φ_j, ∂Δs/∂u_j (plus (∂t_α/∂x φ_j)·Δu when
+       * the tangents turn: @p step_increment given), and ψ of the multipliers.
+       */
+      void
+      set_shapes(const FEFaceValues<dim>     &u_values,
+                 const FEFaceValues<dim>     &m_values,
+                 const unsigned int           q,
+                 const Contact::Partner<dim> &partner,
+                 const Contact::Pairing<dim> &pairing,
+                 const Tensor<1, dim>        *step_increment)
+      {
+        for (unsigned int i = 0; i < n_d; ++i)
+          phi[i] = Tensor<1, dim>();
+        for (unsigned int i = 0; i < n_u_cell; ++i)
+          phi[i][u_component[i]] = u_values.shape_value(i, q);
+        partner.shape_values(pairing, partner_dofs, partner_components, partner_values);
+        for (unsigned int r = 0; r < partner_dofs.size(); ++r)
+          phi[partner_position[partner_dofs[r]]][partner_components[r]] -= partner_values[r];
+        for (unsigned int i = 0; i < n_d; ++i)
+          {
+            normal_shape[i]     = phi[i] * pairing.normal;
+            tangential_shape[i] = pairing.tangential_components(phi[i]);
+            slip_derivative[i]  = tangential_shape[i];
+            if (step_increment)
+              for (unsigned int a = 0; a < dim - 1; ++a)
+                slip_derivative[i][a] += (pairing.tangent_gradients[a] * phi[i]) * *step_increment;
+          }
+        for (unsigned int a = 0; a < n_m; ++a)
+          psi[a] = m_values.shape_value(m_local[a], q);
+      }
+
+      /**
+       * The point's residual: the slave's tractions do work against δu¹, the
+       * partner's (opposite) against δu²(ξ); the multiplier rows of seed eq. (5).
+       */
+      void
+      add_residual(const Contact::PointResponse<dim - 1> &point, const double w)
+      {
+        const double             normal_traction     = point.normal_traction();
+        const Tensor<1, dim - 1> tangential_traction = point.tangential_traction();
+        const double             pressure_residual   = point.pressure_residual();
+        const Tensor<1, dim - 1> semi_residual       = point.semi_multiplier_residual();
+        for (unsigned int i = 0; i < n_d; ++i)
+          rhs(i) -=
+              w * (normal_traction * normal_shape[i] + tangential_traction * tangential_shape[i]);
+        for (unsigned int a = 0; a < n_m; ++a)
+          {
+            rhs(n_d + a) +=
+                w * psi[a] *
+                (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
+            length_weights(n_d + a) +=
+                w * psi[a] * (m_component[a] == 0 ? 1. : point.semi_multiplier_weight());
+          }
+      }
+
+      /** The point's Jacobian: matrix(i, j) = ∂ rhs(i) / ∂ x_j. */
+      void
+      add_jacobian(const Contact::PointResponse<dim - 1> &point,
+                   const Contact::Pairing<dim>           &pairing,
+                   const double                           w,
+                   const bool                             linearise_geometry)
+      {
+        const double             normal_stiffness     = point.normal_stiffness();
+        const Tensor<2, dim - 1> tangential_stiffness = point.tangential_stiffness();
+        const double             normal_traction      = point.normal_traction();
+        const Tensor<1, dim - 1> tangential_traction  = point.tangential_traction();
+        for (unsigned int i = 0; i < n_d; ++i)
+          for (unsigned int j = 0; j < n_d; ++j)
+            {
+              double value = normal_stiffness * normal_shape[i] * normal_shape[j] +
+                             tangential_shape[i] * (tangential_stiffness * slip_derivative[j]);
+              if (linearise_geometry)
+                {
+                  // the traction vector turns with n and t_α
+                  value -= normal_traction * (phi[i] * (pairing.normal_gradient * phi[j]));
+                  for (unsigned int a = 0; a < dim - 1; ++a)
+                    value -=
+                        tangential_traction[a] * (phi[i] * (pairing.tangent_gradients[a] * phi[j]));
+                }
+              matrix(i, j) += w * value;
+            }
+        add_multiplier_blocks(point, w);
+      }
+
+      /**
+       * The displacement–multiplier couplings and the multiplier block. ∂T/∂λ_n
+       * comes from the linearised threshold. The Λ rows keep their weight s/r_t
+       * fixed at the iterate (doc/formulation.md): the derivative of the weight,
+       * (s'/r_t)(Λ − P_B(ĝ)), vanishes at the solution and, large away from it
+       * when r_t is small, only spoils the Newton steps.
+       */
+      void
+      add_multiplier_blocks(const Contact::PointResponse<dim - 1> &point, const double w)
+      {
+        const double             pressure_coupling   = point.pressure_coupling();
+        const Tensor<2, dim - 1> friction_coupling   = point.friction_coupling();
+        const double             pressure_compliance = point.pressure_compliance();
+        const Tensor<2, dim - 1> semi_block          = point.semi_multiplier_block();
+        const Tensor<1, dim - 1> traction_slope = point.tangential_traction_pressure_derivative();
+        for (unsigned int i = 0; i < n_d; ++i)
+          for (unsigned int b = 0; b < n_m; ++b)
+            {
+              const unsigned int c = m_component[b];
+              // u rows, multiplier columns
+              matrix(i, n_d + b) += w * psi[b] *
+                                    (c == 0 ? pressure_coupling * normal_shape[i] -
+                                                  traction_slope * tangential_shape[i]
+                                            : tangential_shape[i] * friction_coupling[c - 1]);
+              // multiplier rows, u columns
+              matrix(n_d + b, i) += w * psi[b] *
+                                    (c == 0 ? pressure_coupling * normal_shape[i]
+                                            : friction_coupling[c - 1] * slip_derivative[i]);
+            }
+        for (unsigned int a = 0; a < n_m; ++a)
+          for (unsigned int b = 0; b < n_m; ++b)
+            {
+              const unsigned int ca = m_component[a], cb = m_component[b];
+              double             block = 0.;
+              if (ca == 0 && cb == 0)
+                block = pressure_compliance;
+              else if (ca > 0 && cb > 0)
+                block = semi_block[ca - 1][cb - 1];
+              matrix(n_d + a, n_d + b) += w * block * psi[a] * psi[b];
+            }
+      }
+
+      const FiniteElement<dim>                       &fe_m;
+      const unsigned int                              n_u_cell;
+      unsigned int                                    n_d = 0, n_m = 0;
+      std::vector<unsigned int>                       u_component, m_component, m_local;
+      std::vector<types::global_dof_index>            dofs, m_dofs, face_partner_dofs;
+      std::map<types::global_dof_index, unsigned int> partner_position;
+      FullMatrix<double>                              matrix;
+      Vector<double>                                  rhs, length_weights;
+      // at the current point
+      std::vector<Tensor<1, dim>>          phi;
+      std::vector<double>                  normal_shape, psi;
+      std::vector<Tensor<1, dim - 1>>      tangential_shape, slip_derivative;
+      std::vector<types::global_dof_index> partner_dofs;
+      std::vector<unsigned int>            partner_components;
+      std::vector<double>                  partner_values;
+    };
   } // namespace
 
   template <int dim>
@@ -49,7 +259,7 @@ namespace StabilizedLagrangian
     inadmissible_state.clear();
     // the deformable master's pairings, folded into the generalized Newton, are
     // refreshed before the assembly: a new pairing may need a new sparsity pattern
-    if (master_surface && loops.linearised(Loop::geometry))
+    if (loops.pairs_before_assembly())
       update_pairings(false);
     assemble_volume(assemble_matrix);
     for (const auto &bc : boundary_conditions.neumann)
@@ -143,24 +353,34 @@ namespace StabilizedLagrangian
           // the force scale of the scaled Newton criterion: internal forces
           // without the Dirichlet constraints, so their rows hold the reactions
           hanging_constraints.distribute_local_to_global(cell_rhs, dofs, internal_force);
-          bool loaded = false;
-          for (const auto &bc : boundary_conditions.neumann)
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-                {
-                  if (!loaded)
-                    cell_external = cell_rhs;
-                  loaded = true;
-                  add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
-                }
-          if (loaded)
-            {
-              cell_external -= cell_rhs;
-              hanging_constraints.distribute_local_to_global(cell_external, dofs, external_force);
-            }
-
+          add_neumann_loads(cell, dofs, neumann_values, cell_rhs, cell_external);
           add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
         }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_neumann_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                                         const std::vector<types::global_dof_index>           &dofs,
+                                         FEFaceValues<dim> &neumann_values,
+                                         Vector<double>    &cell_rhs,
+                                         Vector<double>    &cell_external)
+  {
+    bool loaded = false;
+    for (const auto &bc : boundary_conditions.neumann)
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
+          {
+            if (!loaded)
+              cell_external = cell_rhs;
+            loaded = true;
+            add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
+          }
+    if (loaded)
+      {
+        cell_external -= cell_rhs;
+        hanging_constraints.distribute_local_to_global(cell_external, dofs, external_force);
+      }
   }
 
   template <int dim>
@@ -188,180 +408,38 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::assemble_contact(const bool assemble_matrix)
   {
-    FaceEvaluator             evaluator(*this, contact_quadrature);
-    const unsigned int        n_u_cell = fe_u->n_dofs_per_cell();
-    std::vector<unsigned int> u_component(n_u_cell);
-    for (unsigned int i = 0; i < n_u_cell; ++i)
-      u_component[i] = fe_u->system_to_component_index(i).first;
+    FaceEvaluator          evaluator(*this, contact_quadrature);
+    ContactFaceSystem<dim> local(*fe_u, *fe_m);
     // the generalized Newton's linearised pairing (a plane's does not move; a
-    // deformable master's pairing is refreshed at every iterate, not linearised)
-    const bool linearise_geometry =
-        loops.linearised(Loop::geometry) && !master_surface && !obstacle->is_flat();
-
-    FullMatrix<double>                   local_matrix;
-    Vector<double>                       local_rhs, length_weights;
-    std::vector<types::global_dof_index> local_dofs;
-    // the displacement DoFs of the local system: the slave cell's, then the
-    // paired master faces' (their shape functions enter with a minus sign:
-    // the gap is (x¹ − x²(ξ))·n)
-    std::vector<Tensor<1, dim>>     phi;
-    std::vector<double>             normal_shape;
-    std::vector<Tensor<1, dim - 1>> tangential_shape;
-    // ∂Δs/∂u_j: the tangential shape, plus (∂t_α/∂x φ_j)·Δu when the tangents move
-    std::vector<Tensor<1, dim - 1>>                 slip_derivative;
-    std::vector<types::global_dof_index>            master_dofs;
-    std::vector<unsigned int>                       master_components;
-    std::vector<double>                             master_values;
-    std::map<types::global_dof_index, unsigned int> master_position;
-
+    // deformable master's pairing is refreshed before the assembly, not linearised)
+    const bool         linearise_geometry = loops.pairing_turns();
+    const PointRefresh refresh            = loops.at_iterate();
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
-        // the master DoFs of the face's pairings, once each
-        master_position.clear();
-        std::vector<types::global_dof_index> face_master_dofs;
-        for (unsigned int q = 0; q < evaluator.n_points() && master_surface; ++q)
-          {
-            const int master_face = contact_states[face.first_point + q].pairing.master_face;
-            for (const auto dof : master_surface->face_dof_indices(master_face))
-              if (master_position.emplace(dof, n_u_cell + face_master_dofs.size()).second)
-                face_master_dofs.push_back(dof);
-          }
-        const unsigned int n_d = n_u_cell + face_master_dofs.size();
-        const unsigned int n_m = evaluator.m_dofs.size();
-        const unsigned int n   = n_d + n_m;
-        local_matrix.reinit(n, n);
-        local_rhs.reinit(n);
-        length_weights.reinit(n);
-        local_dofs = evaluator.u_dofs;
-        local_dofs.insert(local_dofs.end(), face_master_dofs.begin(), face_master_dofs.end());
-        local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
-        phi.resize(n_d);
-        normal_shape.resize(n_d);
-        tangential_shape.resize(n_d);
-        slip_derivative.resize(n_d);
-        std::vector<unsigned int> m_component(n_m);
-        for (unsigned int a = 0; a < n_m; ++a)
-          m_component[a] = fe_m->system_to_component_index(evaluator.m_local[a]).first;
-        std::vector<double> psi(n_m);
-
+        local.reinit(evaluator.u_dofs, evaluator.m_dofs, evaluator.m_local);
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+          local.add_partner_dofs(*partner, contact_states[face.first_point + q].pairing);
+        local.finish_dofs();
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
             ContactPointState<dim> &state = contact_states[face.first_point + q];
             ContactKinematics<dim>  k     = evaluator.kinematics(q);
-            refresh_folded_state(state, k);
-            const auto   point = point_response(state, k);
-            const double w     = k.JxW;
-
-            for (unsigned int i = 0; i < n_d; ++i)
-              phi[i] = Tensor<1, dim>();
-            for (unsigned int i = 0; i < n_u_cell; ++i)
-              phi[i][u_component[i]] = evaluator.u_values->shape_value(i, q);
-            if (state.pairing.master_face >= 0)
-              {
-                master_surface->shape_values(state.pairing.master_face,
-                                             state.pairing.master_reference_point,
-                                             master_dofs,
-                                             master_components,
-                                             master_values);
-                for (unsigned int r = 0; r < master_dofs.size(); ++r)
-                  phi[master_position[master_dofs[r]]][master_components[r]] -= master_values[r];
-              }
-            for (unsigned int i = 0; i < n_d; ++i)
-              {
-                normal_shape[i]     = phi[i] * state.pairing.normal;
-                tangential_shape[i] = state.pairing.tangential_components(phi[i]);
-                slip_derivative[i]  = tangential_shape[i];
-                if (linearise_geometry)
-                  for (unsigned int a = 0; a < dim - 1; ++a)
-                    slip_derivative[i][a] +=
-                        (state.pairing.tangent_gradients[a] * phi[i]) * k.step_increment;
-              }
-            for (unsigned int a = 0; a < n_m; ++a)
-              psi[a] = evaluator.m_values->shape_value(evaluator.m_local[a], q);
-
-            // the slave's tractions do work against δu¹, the master's (opposite)
-            // against δu²(ξ) (doc/formulation.md, "Two deformable bodies")
-            const double             normal_traction     = point.normal_traction();
-            const Tensor<1, dim - 1> tangential_traction = point.tangential_traction();
-            const double             pressure_residual   = point.pressure_residual();
-            const Tensor<1, dim - 1> semi_residual       = point.semi_multiplier_residual();
-            for (unsigned int i = 0; i < n_d; ++i)
-              local_rhs(i) -= w * (normal_traction * normal_shape[i] +
-                                   tangential_traction * tangential_shape[i]);
-            for (unsigned int a = 0; a < n_m; ++a)
-              {
-                local_rhs(n_d + a) +=
-                    w * psi[a] *
-                    (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
-                length_weights(n_d + a) +=
-                    w * psi[a] * (m_component[a] == 0 ? 1. : point.semi_multiplier_weight());
-              }
-            if (!assemble_matrix)
-              continue;
-
-            // local_matrix(i, j) = ∂ local_rhs(i) / ∂ x_j
-            const double             normal_stiffness     = point.normal_stiffness();
-            const Tensor<2, dim - 1> tangential_stiffness = point.tangential_stiffness();
-            const double             pressure_coupling    = point.pressure_coupling();
-            const Tensor<2, dim - 1> friction_coupling    = point.friction_coupling();
-            const double             pressure_compliance  = point.pressure_compliance();
-            const Tensor<2, dim - 1> semi_block           = point.semi_multiplier_block();
-            // ∂T/∂λ_n from the linearised threshold. The Λ rows keep their weight
-            // s/r_t fixed at the iterate (doc/formulation.md): the derivative of the
-            // weight, (s'/r_t)(Λ − P_B(ĝ)), vanishes at the solution and, large
-            // away from it when r_t is small, only spoils the Newton steps.
-            const Tensor<1, dim - 1> traction_slope =
-                point.tangential_traction_pressure_derivative();
-            for (unsigned int i = 0; i < n_d; ++i)
-              {
-                for (unsigned int j = 0; j < n_d; ++j)
-                  {
-                    double value =
-                        normal_stiffness * normal_shape[i] * normal_shape[j] +
-                        tangential_shape[i] * (tangential_stiffness * slip_derivative[j]);
-                    if (linearise_geometry)
-                      {
-                        // the traction vector turns with n and t_α
-                        value -=
-                            normal_traction * (phi[i] * (state.pairing.normal_gradient * phi[j]));
-                        for (unsigned int a = 0; a < dim - 1; ++a)
-                          value -= tangential_traction[a] *
-                                   (phi[i] * (state.pairing.tangent_gradients[a] * phi[j]));
-                      }
-                    local_matrix(i, j) += w * value;
-                  }
-                for (unsigned int b = 0; b < n_m; ++b)
-                  {
-                    const unsigned int c = m_component[b];
-                    // u rows, multiplier columns
-                    local_matrix(i, n_d + b) +=
-                        w * psi[b] *
-                        (c == 0 ? pressure_coupling * normal_shape[i] -
-                                      traction_slope * tangential_shape[i]
-                                : tangential_shape[i] * friction_coupling[c - 1]);
-                    // multiplier rows, u columns
-                    local_matrix(n_d + b, i) +=
-                        w * psi[b] *
-                        (c == 0 ? pressure_coupling * normal_shape[i]
-                                : friction_coupling[c - 1] * slip_derivative[i]);
-                  }
-              }
-            for (unsigned int a = 0; a < n_m; ++a)
-              for (unsigned int b = 0; b < n_m; ++b)
-                {
-                  const unsigned int ca = m_component[a], cb = m_component[b];
-                  double             block = 0.;
-                  if (ca == 0 && cb == 0)
-                    block = pressure_compliance;
-                  else if (ca > 0 && cb > 0)
-                    block = semi_block[ca - 1][cb - 1];
-                  local_matrix(n_d + a, n_d + b) += w * block * psi[a] * psi[b];
-                }
+            evaluate_point_state(state, k, refresh);
+            const auto point = point_response(state, k);
+            local.set_shapes(*evaluator.u_values,
+                             *evaluator.m_values,
+                             q,
+                             *partner,
+                             state.pairing,
+                             linearise_geometry ? &k.step_increment : nullptr);
+            local.add_residual(point, k.JxW);
+            if (assemble_matrix)
+              local.add_jacobian(point, state.pairing, k.JxW, linearise_geometry);
           }
         newton_constraints.distribute_local_to_global(
-            length_weights, local_dofs, multiplier_length_weights);
-        add_to_global_system(local_matrix, local_rhs, local_dofs, assemble_matrix);
+            local.length_weights, local.dofs, multiplier_length_weights);
+        add_to_global_system(local.matrix, local.rhs, local.dofs, assemble_matrix);
       }
   }
 
@@ -447,6 +525,12 @@ namespace StabilizedLagrangian
       FEFaceValues<dim> &,                                            \
       Vector<double> &) const;                                        \
   template void ContactProblem<dim>::assemble_contact(bool);          \
+  template void ContactProblem<dim>::add_neumann_loads(               \
+      const typename DoFHandler<dim>::active_cell_iterator &,         \
+      const std::vector<types::global_dof_index> &,                   \
+      FEFaceValues<dim> &,                                            \
+      Vector<double> &,                                               \
+      Vector<double> &);                                              \
   template void ContactProblem<dim>::add_to_global_system(            \
       const FullMatrix<double> &,                                     \
       Vector<double> &,                                               \

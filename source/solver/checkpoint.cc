@@ -261,67 +261,124 @@ namespace StabilizedLagrangian
     pcout << "  checkpoint written (step " << controller.step << ", t = " << time << ")\n";
   }
 
+  namespace
+  {
+    /** The checkpoint directory of @p base, or the previous one when a kill came between the
+     * renames. */
+    std::string
+    find_checkpoint(const std::string &base)
+    {
+      for (const std::string &candidate : {base + "/checkpoint", base + "/checkpoint.old"})
+        if (std::filesystem::exists(candidate + "/manifest"))
+          return candidate;
+      throw InputError("--resume: no checkpoint in " + base +
+                       " (a checkpoint is written every `Output/Checkpoint interval` load "
+                       "steps; the interval is 0 unless the parameter file sets it).");
+    }
+
+    /**
+     * The file of @p rank in the checkpoint @p directory, checked against its
+     * manifest: the number of ranks and the size of every rank's file.
+     */
+    std::string
+    rank_file(const std::string &directory, const unsigned int rank, const unsigned int n_ranks)
+    {
+      std::istringstream manifest(read_whole(directory + "/manifest"));
+      std::string        key;
+      unsigned int       saved_ranks = 0;
+      manifest >> key >> saved_ranks;
+      if (key != "ranks" || saved_ranks == 0)
+        throw InputError("the checkpoint manifest " + directory + "/manifest is damaged.");
+      if (saved_ranks != n_ranks)
+        throw InputError("the checkpoint in " + directory + " was written by " +
+                         std::to_string(saved_ranks) + " MPI rank(s); resume it with mpirun -np " +
+                         std::to_string(saved_ranks) + " (this run has " + std::to_string(n_ranks) +
+                         ").");
+      std::map<std::string, unsigned long> sizes;
+      for (std::string name, value; manifest >> name >> value;)
+        if (name.rfind("rank-", 0) == 0)
+          sizes[name] = std::stoul(value);
+      const std::string file = "rank-" + std::to_string(rank) + ".bin";
+      const std::string path = directory + "/" + file;
+      if (!std::filesystem::exists(path) || std::filesystem::file_size(path) != sizes[file])
+        throw InputError("the checkpoint file " + path + " is truncated or damaged: " +
+                         (std::filesystem::exists(path)
+                              ? std::to_string(std::filesystem::file_size(path)) + " bytes"
+                              : std::string("missing")) +
+                         ", the manifest says " + std::to_string(sizes[file]) + " bytes.");
+      return path;
+    }
+
+    /** The parameters of a resume: only the end time and the output may change. */
+    void
+    check_resume_parameters(const std::string &directory, const std::string &parameters_used)
+    {
+      const auto saved   = entries(read_whole(directory + "/parameters.prm"));
+      const auto current = entries(parameters_used);
+      for (const auto &[entry, value] : current)
+        {
+          const auto        found  = saved.find(entry);
+          const std::string before = found == saved.end() ? "(not declared)" : found->second;
+          if (before != value && !may_change_on_resume(entry))
+            throw InputError(
+                "--resume: the entry " + entry + " is '" + value +
+                "', the checkpoint was written with '" + before +
+                "'. A resume may change only Load stepping/End time and Wall time limit, "
+                "the Output entries other than the directory and Linear "
+                "solver/Threads per rank; run from the start for other changes.");
+        }
+    }
+
+    /** The cells refined at each refinement of the run, as the checkpoint lists them. */
+    std::vector<std::vector<CellId>>
+    read_refinements(Reader &in)
+    {
+      std::uint32_t n_refinements = 0;
+      in.get(n_refinements);
+      std::vector<std::vector<CellId>> history(n_refinements);
+      for (auto &flagged : history)
+        {
+          std::uint64_t n_cells = 0;
+          in.get(n_cells);
+          for (std::uint64_t c = 0; c < n_cells; ++c)
+            {
+              std::string id;
+              in.get(id);
+              flagged.push_back(CellId(id));
+            }
+        }
+      return history;
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::replay_refinements()
+  {
+    for (const auto &flagged : refinement_history)
+      {
+        for (const auto &id : flagged)
+          {
+            const auto cell = triangulation.create_cell_iterator(id);
+            AssertThrow(cell->is_active() && cell->is_locally_owned(),
+                        ExcMessage("the checkpoint's refinements do not fit this mesh"));
+            cell->set_refine_flag();
+          }
+        triangulation.execute_coarsening_and_refinement();
+        setup_after_refinement();
+      }
+  }
+
   template <int dim>
   unsigned int
   ContactProblem<dim>::restore_checkpoint()
   {
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const std::string &base    = run_directory;
-
-    // the checkpoint, or the previous one when a kill came between the renames
-    std::string directory;
-    for (const std::string &candidate : {base + "/checkpoint", base + "/checkpoint.old"})
-      if (std::filesystem::exists(candidate + "/manifest"))
-        {
-          directory = candidate;
-          break;
-        }
-    if (directory.empty())
-      throw InputError("--resume: no checkpoint in " + base +
-                       " (a checkpoint is written every `Output/Checkpoint interval` load "
-                       "steps; the interval is 0 unless the parameter file sets it).");
-
-    // manifest: the number of ranks and the size of every rank's file
-    std::istringstream manifest(read_whole(directory + "/manifest"));
-    std::string        key;
-    unsigned int       saved_ranks = 0;
-    manifest >> key >> saved_ranks;
-    if (key != "ranks" || saved_ranks == 0)
-      throw InputError("the checkpoint manifest " + directory + "/manifest is damaged.");
-    if (saved_ranks != n_ranks)
-      throw InputError("the checkpoint in " + directory + " was written by " +
-                       std::to_string(saved_ranks) + " MPI rank(s); resume it with mpirun -np " +
-                       std::to_string(saved_ranks) + " (this run has " + std::to_string(n_ranks) +
-                       ").");
-    std::map<std::string, unsigned long> sizes;
-    for (std::string name, value; manifest >> name >> value;)
-      if (name.rfind("rank-", 0) == 0)
-        sizes[name] = std::stoul(value);
-    const std::string file = "rank-" + std::to_string(rank) + ".bin";
-    const std::string path = directory + "/" + file;
-    if (!std::filesystem::exists(path) || std::filesystem::file_size(path) != sizes[file])
-      throw InputError("the checkpoint file " + path + " is truncated or damaged: " +
-                       (std::filesystem::exists(path)
-                            ? std::to_string(std::filesystem::file_size(path)) + " bytes"
-                            : std::string("missing")) +
-                       ", the manifest says " + std::to_string(sizes[file]) + " bytes.");
-
-    // the parameters: only the end time and the output may change
-    const auto saved   = entries(read_whole(directory + "/parameters.prm"));
-    const auto current = entries(parameters_used);
-    for (const auto &[entry, value] : current)
-      {
-        const auto        found  = saved.find(entry);
-        const std::string before = found == saved.end() ? "(not declared)" : found->second;
-        if (before != value && !may_change_on_resume(entry))
-          throw InputError(
-              "--resume: the entry " + entry + " is '" + value +
-              "', the checkpoint was written with '" + before +
-              "'. A resume may change only Load stepping/End time and Wall time limit, "
-              "the Output entries other than the directory and Linear "
-              "solver/Threads per rank; run from the start for other changes.");
-      }
+    const unsigned int rank      = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const std::string &base      = run_directory;
+    const std::string  directory = find_checkpoint(base);
+    const std::string  path =
+        rank_file(directory, rank, Utilities::MPI::n_mpi_processes(mpi_communicator));
+    check_resume_parameters(directory, parameters_used);
 
     Reader      in(read_whole(path), path);
     std::string header;
@@ -339,29 +396,8 @@ namespace StabilizedLagrangian
     in.get(saved_n_multipliers);
 
     // the mesh: the same refinements, cell by cell
-    std::uint32_t n_refinements = 0;
-    in.get(n_refinements);
-    refinement_history.assign(n_refinements, {});
-    for (auto &flagged : refinement_history)
-      {
-        std::uint64_t n_cells = 0;
-        in.get(n_cells);
-        for (std::uint64_t c = 0; c < n_cells; ++c)
-          {
-            std::string id;
-            in.get(id);
-            flagged.push_back(CellId(id));
-          }
-        for (const auto &id : flagged)
-          {
-            const auto cell = triangulation.create_cell_iterator(id);
-            AssertThrow(cell->is_active() && cell->is_locally_owned(),
-                        ExcMessage("the checkpoint's refinements do not fit this mesh"));
-            cell->set_refine_flag();
-          }
-        triangulation.execute_coarsening_and_refinement();
-        setup_after_refinement();
-      }
+    refinement_history = read_refinements(in);
+    replay_refinements();
     if (saved_n_u != n_u || saved_n_multipliers != n_multipliers)
       throw InputError("the checkpoint in " + directory + " has " + std::to_string(saved_n_u) +
                        " + " + std::to_string(saved_n_multipliers) + " DoFs, the rebuilt mesh " +
@@ -411,17 +447,8 @@ namespace StabilizedLagrangian
     if (trailer != magic || !in.at_end())
       throw InputError("the checkpoint file " + path + " is damaged: its end marker is missing.");
 
-    // the output continues where the checkpoint was taken: a killed run may have
-    // written rows and files of later steps
-    cycle           = saved_cycle;
-    const bool root = rank == 0;
-    if (root && cycles_bytes > 0)
-      SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
-    output_parameters.directory =
-        cycle < adaptive_refinement.cycles ? base + "/cycle-" + std::to_string(cycle) : base;
-    statistics.resume(output_parameters.directory, dim, root, statistics_state);
-    write_pvd();
-    output_parameters.directory = base;
+    cycle = saved_cycle;
+    continue_outputs(cycles_bytes, statistics_state);
     pcout << "Resuming from " << directory << ": step " << controller.step << ", t = " << time
           << (adaptive_refinement.cycles > 0 ? ", refinement cycle " + std::to_string(cycle)
                                              : std::string())
@@ -429,12 +456,34 @@ namespace StabilizedLagrangian
     return cycle;
   }
 
-  template void
-  ContactProblem<2>::write_checkpoint() const;
-  template void
-  ContactProblem<3>::write_checkpoint() const;
-  template unsigned int
-  ContactProblem<2>::restore_checkpoint();
-  template unsigned int
-  ContactProblem<3>::restore_checkpoint();
+  template <int dim>
+  void
+  ContactProblem<dim>::continue_outputs(const unsigned long            cycles_bytes,
+                                        const StatisticsWriter::State &statistics_state)
+  {
+    // the output continues where the checkpoint was taken: a killed run may have
+    // written rows and files of later steps
+    const std::string &base = run_directory;
+    const bool         root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    if (root && cycles_bytes > 0)
+      SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
+    output_parameters.directory =
+        cycle < adaptive_refinement.cycles ? base + "/cycle-" + std::to_string(cycle) : base;
+    statistics.resume(output_parameters.directory, dim, root, statistics_state);
+    write_pvd();
+    output_parameters.directory = base;
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                  \
+  template void         ContactProblem<dim>::write_checkpoint() const;       \
+  template unsigned int ContactProblem<dim>::restore_checkpoint();           \
+  template void         ContactProblem<dim>::replay_refinements();           \
+  template void         ContactProblem<dim>::continue_outputs(unsigned long, \
+                                                      const StatisticsWriter::State &);
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
 } // namespace StabilizedLagrangian

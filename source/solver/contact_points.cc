@@ -38,27 +38,6 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  Obstacles::Pairing<dim>
-  ContactProblem<dim>::pair(const Point<dim> &x) const
-  {
-    return master_surface ? master_surface->project(x) : obstacle->project(x);
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::follow_master(Obstacles::Pairing<dim> &pairing,
-                                     ContactKinematics<dim>  &k) const
-  {
-    if (pairing.master_face < 0)
-      return;
-    const unsigned int    face = pairing.master_face;
-    const Point<dim - 1> &xi   = pairing.master_reference_point;
-    const Tensor<1, dim>  now  = master_surface->displacement(face, xi, ghosted_solution);
-    pairing.master_point       = master_surface->reference_point(face, xi) + now;
-    k.step_increment -= now - master_surface->displacement(face, xi, step_start);
-  }
-
-  template <int dim>
   bool
   ContactProblem<dim>::finite_strain() const
   {
@@ -157,16 +136,11 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::update_pairings(const bool resegment)
   {
-    if (master_surface)
-      master_surface->update_configuration(ghosted_solution);
-    const bool    new_points = resegment && update_segments();
-    FaceEvaluator evaluator(*this, contact_quadrature);
-    for (const auto &face : contact_faces)
-      {
-        evaluator.reinit(face, ghosted_solution);
-        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-          contact_states[face.first_point + q].pairing = pair(evaluator.kinematics(q).position);
-      }
+    partner->update_configuration(ghosted_solution);
+    const bool   new_points = resegment && update_segments();
+    PointRefresh pairing;
+    pairing.pairing = true;
+    refresh_contact_points(pairing, [](const auto &, const auto &, const auto &) {});
     if (new_points)
       {
         // the new points take the threshold and status of the current iterate,
@@ -174,7 +148,7 @@ namespace StabilizedLagrangian
         update_friction_thresholds();
         update_statuses();
       }
-    if (master_surface && sparsity_ready && pairings_left_sparsity())
+    if (sparsity_ready && pairings_left_sparsity())
       setup_sparsity();
   }
 
@@ -182,7 +156,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::update_segments()
   {
-    if (dim != 2 || !master_surface)
+    // (3D faces are not cut: the quadrature of the contact faces is used whole)
+    if (dim != 2)
       return false;
     FaceEvaluator                       ends(*this, QTrapezoid<dim - 1>(), false);
     std::vector<ContactFace>            faces;
@@ -198,7 +173,7 @@ namespace StabilizedLagrangian
         box.extend(0.5 * length);
         // the parameters in (0, 1) of the master's vertices projected on the face
         std::vector<double> cuts = {0., 1.};
-        for (const auto &vertex : master_surface->vertices_near(box))
+        for (const auto &vertex : partner->vertices_near(box))
           {
             const double s = (vertex - A) * AB / (length * length);
             if (s > 1e-8 && s < 1. - 1e-8 && (vertex - (A + s * AB)).norm() <= length)
@@ -270,16 +245,16 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::refresh_folded_state(ContactPointState<dim> &state,
-                                            ContactKinematics<dim> &k) const
+  ContactProblem<dim>::evaluate_point_state(ContactPointState<dim> &state,
+                                            ContactKinematics<dim> &k,
+                                            const PointRefresh     &what) const
   {
-    // (a deformable master's pairings are refreshed before the assembly)
-    if (loops.linearised(Loop::geometry) && !master_surface)
-      state.pairing = obstacle->project(k.position);
-    follow_master(state.pairing, k);
-    if (loops.linearised(Loop::friction) && friction_law->threshold_depends_on_pressure())
+    if (what.pairing)
+      state.pairing = partner->project(k.position);
+    k.step_increment -= partner->follow(state.pairing, ghosted_solution, step_start);
+    if (what.threshold)
       state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
-    if (loops.linearised(Loop::status))
+    if (what.status)
       state.in_contact = status(state, k);
   }
 
@@ -305,21 +280,18 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                            \
-  template void                    ContactProblem<dim>::setup_contact_points();                        \
-  template Obstacles::Pairing<dim> ContactProblem<dim>::pair(const Point<dim> &) const;                \
-  template void                    ContactProblem<dim>::follow_master(Obstacles::Pairing<dim> &,       \
-                                                   ContactKinematics<dim> &) const; \
-  template bool                    ContactProblem<dim>::finite_strain() const;                         \
-  template class ContactProblem<dim>::FaceEvaluator;                                                   \
-  template void                            ContactProblem<dim>::update_pairings(bool);                 \
-  template bool                            ContactProblem<dim>::update_segments();                     \
-  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(                        \
-      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;                           \
-  template void   ContactProblem<dim>::refresh_folded_state(ContactPointState<dim> &,                  \
-                                                          ContactKinematics<dim> &) const;           \
-  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,                          \
-                                            const ContactKinematics<dim> &) const;                   \
+#define SL_INSTANTIATE(dim)                                                            \
+  template void ContactProblem<dim>::setup_contact_points();                           \
+  template bool ContactProblem<dim>::finite_strain() const;                            \
+  template class ContactProblem<dim>::FaceEvaluator;                                   \
+  template void                            ContactProblem<dim>::update_pairings(bool); \
+  template bool                            ContactProblem<dim>::update_segments();     \
+  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(        \
+      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;           \
+  template void ContactProblem<dim>::evaluate_point_state(                             \
+      ContactPointState<dim> &, ContactKinematics<dim> &, const PointRefresh &) const; \
+  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,          \
+                                            const ContactKinematics<dim> &) const;   \
   template double ContactProblem<dim>::threshold_pressure(double) const;
 
   SL_INSTANTIATE(2)

@@ -55,8 +55,8 @@ namespace StabilizedLagrangian
     setup_after_refinement();
     // a flat obstacle in small strain never moves the pairing; a frictionless
     // or Tresca law never moves the threshold
-    loops.set_can_change(Loop::geometry,
-                         master_surface || !(obstacle->is_flat() && !finite_strain()));
+    loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
+    loops.set_can_change(Loop::geometry, !(partner->is_flat() && !finite_strain()));
     loops.set_can_change(Loop::friction,
                          friction_law->has_friction() &&
                              friction_law->threshold_depends_on_pressure());
@@ -101,9 +101,9 @@ namespace StabilizedLagrangian
     E_max               = Utilities::MPI::max(E_max, mpi_communicator);
     nodal_stiffness     = E_max * std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
     negligible_pressure = negligible_pressure_fraction * E_max;
-    free_rigid_motions  = rigid_motions_left_free();
     touching_gap        = touching_gap_fraction * GridTools::diameter(triangulation);
     setup_dofs();
+    free_rigid_motions = rigid_motions_left_free();
     setup_contact_points();
     material_history.initialize(
         triangulation,
@@ -129,7 +129,31 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::make_grid()
   {
     geometry->create_mesh(triangulation);
+    resolve_boundaries();
+    assign_material_slots();
+    for (const auto &bc : boundary_conditions.dirichlet)
+      require_boundary(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
+    for (const auto &bc : boundary_conditions.neumann)
+      require_boundary(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
+  }
 
+  template <int dim>
+  void
+  ContactProblem<dim>::require_boundary(const types::boundary_id id, const std::string &entry) const
+  {
+    std::set<types::boundary_id> mesh_ids;
+    for (const auto mesh_id : triangulation.get_boundary_ids())
+      mesh_ids.insert(mesh_id);
+    if (mesh_ids.count(id) == 0)
+      throw InputError(entry + " = " + std::to_string(id) +
+                       ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +
+                       ".");
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::resolve_boundaries()
+  {
     // boundaries given by name: the mesh's names (a Gmsh file's physical groups)
     const auto names   = geometry->boundary_names();
     const auto resolve = [&](const std::string &name, const std::string &entry) {
@@ -159,26 +183,22 @@ namespace StabilizedLagrangian
       if (!bc.boundary_name.empty())
         bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Neumann/Boundary id");
 
-    std::set<types::boundary_id> mesh_ids;
-    for (const auto id : triangulation.get_boundary_ids())
-      mesh_ids.insert(id);
-    const auto require = [&](const types::boundary_id id, const std::string &entry) {
-      if (mesh_ids.count(id) == 0)
-        throw InputError(entry + " = " + std::to_string(id) +
-                         ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +
-                         ".");
-    };
     for (const auto id : contact_parameters.boundary_ids)
-      require(id, "Contact/Contact boundary ids");
+      require_boundary(id, "Contact/Contact boundary ids");
     for (const auto id : contact_parameters.master_ids)
       {
-        require(id, "Contact/Master boundary ids");
+        require_boundary(id, "Contact/Master boundary ids");
         if (contact_parameters.boundary_ids.count(id) > 0)
           throw InputError("Contact/Master boundary ids: boundary " + std::to_string(id) +
                            " is also in Contact/Contact boundary ids; the slave and master "
                            "surfaces must be different boundaries.");
       }
+  }
 
+  template <int dim>
+  void
+  ContactProblem<dim>::assign_material_slots()
+  {
     // bodies of the material slots, by name (a Gmsh file's physical groups) or material id
     std::set<types::material_id> mesh_bodies;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -221,10 +241,6 @@ namespace StabilizedLagrangian
                              materials[material_slots[id]].slot + ".");
           material_slots[id] = slot;
         }
-    for (const auto &bc : boundary_conditions.dirichlet)
-      require(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
-    for (const auto &bc : boundary_conditions.neumann)
-      require(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
   }
 
   template class ContactProblem<2>;

@@ -9,6 +9,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/contact/master_surface.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <cmath>
@@ -73,16 +74,18 @@ namespace StabilizedLagrangian
     locally_relevant.set_size(n_u + n_multipliers);
     locally_relevant.add_indices(locally_relevant_u);
     locally_relevant.add_indices(relevant_multipliers, n_u);
-    master_surface.reset();
-    if (!contact_parameters.master_ids.empty())
+    if (contact_parameters.master_ids.empty())
+      partner = std::make_unique<Contact::RigidObstacle<dim>>(*obstacle);
+    else
       {
         // every rank sees the whole master surface (its DoFs are ghosts)
-        master_surface = std::make_unique<Contact::MasterSurface<dim>>(
+        auto master_surface = std::make_unique<Contact::MasterSurface<dim>>(
             dof_handler_u, contact_parameters.master_ids, mpi_communicator);
         if (master_surface->n_faces() == 0)
           throw InputError("Contact/Master boundary ids: the master boundary has no faces.");
-        locally_relevant.add_indices(master_surface->dofs());
+        partner = std::move(master_surface);
       }
+    locally_relevant.add_indices(partner->dofs());
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
@@ -229,9 +232,9 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
   {
-    if (!friction_law->has_friction() || master_surface || !obstacle->is_flat())
+    if (!friction_law->has_friction() || !partner->is_flat())
       return;
-    const auto tangents = obstacle->project(Point<dim>()).tangents;
+    const auto tangents = partner->project(Point<dim>()).tangents;
     // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)
     std::vector<unsigned int> m_component(fe_m->n_dofs_per_vertex());
     for (unsigned int i = 0; i < m_component.size(); ++i)
@@ -337,23 +340,20 @@ namespace StabilizedLagrangian
         evaluator.reinit(face, ghosted_solution);
         std::vector<types::global_dof_index> local_dofs = evaluator.u_dofs;
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
-        if (master_surface)
+        // the partner's faces near the pairings (none for a rigid obstacle)
+        std::set<unsigned int> near;
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+          for (const unsigned int m :
+               partner->faces_near(contact_states[face.first_point + q].pairing))
+            near.insert(m);
+        sparsity_master_faces[c].assign(near.begin(), near.end());
+        for (const unsigned int m : near)
           {
-            // the paired master faces and their neighbours
-            std::set<unsigned int> near;
-            for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-              for (const unsigned int m : master_surface->neighbours(
-                       contact_states[face.first_point + q].pairing.master_face))
-                near.insert(m);
-            sparsity_master_faces[c].assign(near.begin(), near.end());
-            for (const unsigned int m : near)
-              {
-                const auto master_dofs = master_surface->face_dof_indices(m);
-                local_dofs.insert(local_dofs.end(), master_dofs.begin(), master_dofs.end());
-              }
-            std::sort(local_dofs.begin(), local_dofs.end());
-            local_dofs.erase(std::unique(local_dofs.begin(), local_dofs.end()), local_dofs.end());
+            const auto master_dofs = partner->face_dof_indices(m);
+            local_dofs.insert(local_dofs.end(), master_dofs.begin(), master_dofs.end());
           }
+        std::sort(local_dofs.begin(), local_dofs.end());
+        local_dofs.erase(std::unique(local_dofs.begin(), local_dofs.end()), local_dofs.end());
         newton_constraints.add_entries_local_to_global(local_dofs, dsp, false);
       }
     SparsityTools::distribute_sparsity_pattern(
@@ -372,21 +372,18 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::pairings_left_sparsity() const
   {
-    int left = 0;
-    if (master_surface)
-      {
-        if (sparsity_master_faces.size() != contact_faces.size())
-          left = 1;
-        else
-          for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
-            for (unsigned int q = 0; q < face_quadrature(contact_faces[c]).size(); ++q)
-              {
-                const auto &faces = sparsity_master_faces[c];
-                const int m = contact_states[contact_faces[c].first_point + q].pairing.master_face;
-                if (!std::binary_search(faces.begin(), faces.end(), static_cast<unsigned int>(m)))
-                  left = 1;
-              }
-      }
+    // a pairing left them when its partner's face is not among those coupled
+    // (a rigid obstacle's pairings have no face)
+    int left = sparsity_master_faces.size() != contact_faces.size();
+    for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
+      for (unsigned int q = 0; q < face_quadrature(contact_faces[c]).size(); ++q)
+        {
+          const auto &faces = sparsity_master_faces[c];
+          const int   m     = contact_states[contact_faces[c].first_point + q].pairing.master_face;
+          if (m >= 0 &&
+              !std::binary_search(faces.begin(), faces.end(), static_cast<unsigned int>(m)))
+            left = 1;
+        }
     return Utilities::MPI::max(left, mpi_communicator) == 1;
   }
 

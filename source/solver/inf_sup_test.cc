@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <map>
 
 namespace StabilizedLagrangian
 {
@@ -29,6 +31,37 @@ namespace StabilizedLagrangian
   // norm on quasi-uniform contact meshes (Chapelle and Bathe's test, with
   // this norm for the multiplier).
 
+  namespace
+  {
+    /**
+     * The smallest eigenvalue of Pᵀ S P x = β² Pᵀ M P x: the Schur complement
+     * and the multiplier Gram matrix restricted to the free multipliers
+     * (hanging nodes and a coarser multiplier mesh constrain the others, μ = P μ_free).
+     */
+    double
+    smallest_generalized_eigenvalue(const FullMatrix<double> &schur,
+                                    const FullMatrix<double> &gram_m,
+                                    const FullMatrix<double> &prolongation)
+    {
+      const unsigned int n_free = prolongation.n();
+      const auto restrict       = [&](const FullMatrix<double> &full) {
+        FullMatrix<double> result(n_free, n_free);
+        result.triple_product(full, prolongation, prolongation, true, false);
+        LAPACKFullMatrix<double> lapack(n_free, n_free);
+        lapack = result;
+        return lapack;
+      };
+      LAPACKFullMatrix<double>    schur_free = restrict(schur);
+      LAPACKFullMatrix<double>    gram_free  = restrict(gram_m);
+      std::vector<Vector<double>> eigenvectors(n_free, Vector<double>(n_free));
+      schur_free.compute_generalized_eigenvalues_symmetric(gram_free, eigenvectors);
+      double smallest = std::numeric_limits<double>::max();
+      for (unsigned int k = 0; k < n_free; ++k)
+        smallest = std::min(smallest, schur_free.eigenvalue(k).real());
+      return smallest;
+    }
+  } // namespace
+
   template <int dim>
   InfSupRecord
   ContactProblem<dim>::compute_inf_sup_constant()
@@ -41,10 +74,51 @@ namespace StabilizedLagrangian
     DoFTools::make_hanging_node_constraints(dof_handler_u, constraints);
     add_homogeneous_dirichlet_constraints(constraints);
     constraints.close();
+    TrilinosWrappers::SparseMatrix gram_u;
+    assemble_h1_gram(constraints, gram_u);
 
+    // B (rows: the λ_n DoFs) and M
+    std::map<types::global_dof_index, unsigned int> normal_row;
+    for (const auto &[row, component] : locally_owned_multiplier_components())
+      if (component == 0)
+        normal_row.emplace(row, normal_row.size());
+    const unsigned int                         n_rows = normal_row.size();
+    std::vector<TrilinosWrappers::MPI::Vector> trace_rows(
+        n_rows, TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
+    FullMatrix<double> gram_m(n_rows, n_rows);
+    const double       contact_mesh_size =
+        assemble_trace_pairing(constraints, normal_row, trace_rows, gram_m);
+
+    // S = B K⁻¹ Bᵀ, one solve per multiplier row
+    LinearSolvers::DirectSolver   solver(linear_solver_parameters.direct_solver);
+    FullMatrix<double>            schur(n_rows, n_rows);
+    TrilinosWrappers::MPI::Vector lifted(locally_owned_u, mpi_communicator);
+    for (unsigned int a = 0; a < n_rows; ++a)
+      {
+        trace_rows[a].compress(VectorOperation::add);
+        AssertThrow(solver.solve(gram_u, lifted, trace_rows[a]),
+                    ExcMessage("The inf-sup test could not factorise the H1 Gram matrix."));
+        for (unsigned int b = 0; b <= a; ++b)
+          schur(a, b) = schur(b, a) = lifted * trace_rows[b];
+      }
+
+    const FullMatrix<double> prolongation = multiplier_prolongation(normal_row);
+    const double smallest = smallest_generalized_eigenvalue(schur, gram_m, prolongation);
+    InfSupRecord record;
+    record.contact_mesh_size      = contact_mesh_size;
+    record.displacement_dofs      = n_u;
+    record.normal_multiplier_dofs = prolongation.n();
+    record.beta                   = std::sqrt(std::max(smallest, 0.));
+    return record;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::assemble_h1_gram(const AffineConstraints<double> &constraints,
+                                        TrilinosWrappers::SparseMatrix  &gram_u) const
+  {
     DynamicSparsityPattern dsp(locally_relevant_u);
     DoFTools::make_sparsity_pattern(dof_handler_u, dsp, constraints, false);
-    TrilinosWrappers::SparseMatrix gram_u;
     gram_u.reinit(locally_owned_u, locally_owned_u, dsp, mpi_communicator);
 
     const FiniteElement<dim> &fe = *fe_u;
@@ -71,19 +145,23 @@ namespace StabilizedLagrangian
         constraints.distribute_local_to_global(cell_matrix, dofs, gram_u);
       }
     gram_u.compress(VectorOperation::add);
+  }
 
-    // B (rows: the λ_n DoFs) and M, with a Gauss rule exact for both
-    std::map<types::global_dof_index, unsigned int> normal_row;
-    for (const auto &[row, component] : locally_owned_multiplier_components())
-      if (component == 0)
-        normal_row.emplace(row, normal_row.size());
-    const unsigned int                         n_rows = normal_row.size();
-    std::vector<TrilinosWrappers::MPI::Vector> trace_rows(
-        n_rows, TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
-    FullMatrix<double> gram_m(n_rows, n_rows);
-
+  template <int dim>
+  double
+  ContactProblem<dim>::assemble_trace_pairing(
+      const AffineConstraints<double>                       &constraints,
+      const std::map<types::global_dof_index, unsigned int> &normal_row,
+      std::vector<TrilinosWrappers::MPI::Vector>            &trace_rows,
+      FullMatrix<double>                                    &gram_m) const
+  {
+    // a Gauss rule exact for both
     const QGauss<dim - 1> quadrature(
         std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
+    const unsigned int        n_dofs = fe_u->n_dofs_per_cell();
+    std::vector<unsigned int> component(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = fe_u->system_to_component_index(i).first;
     FaceEvaluator  evaluator(*this, quadrature, false);
     Vector<double> cell_row(n_dofs);
     double         contact_mesh_size = 0.;
@@ -94,8 +172,9 @@ namespace StabilizedLagrangian
         contact_mesh_size = std::max(contact_mesh_size, h);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
-            const Tensor<1, dim> normal = pair(evaluator.u_values->quadrature_point(q)).normal;
-            const double         w      = evaluator.u_values->JxW(q);
+            const Tensor<1, dim> normal =
+                partner->project(evaluator.u_values->quadrature_point(q)).normal;
+            const double w = evaluator.u_values->JxW(q);
             for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
               {
                 const auto row = normal_row.find(evaluator.m_dofs[a]);
@@ -117,22 +196,17 @@ namespace StabilizedLagrangian
               }
           }
       }
+    return contact_mesh_size;
+  }
 
-    // S = B K⁻¹ Bᵀ, one solve per multiplier row
-    LinearSolvers::DirectSolver   solver(linear_solver_parameters.direct_solver);
-    FullMatrix<double>            schur(n_rows, n_rows);
-    TrilinosWrappers::MPI::Vector lifted(locally_owned_u, mpi_communicator);
-    for (unsigned int a = 0; a < n_rows; ++a)
-      {
-        trace_rows[a].compress(VectorOperation::add);
-        AssertThrow(solver.solve(gram_u, lifted, trace_rows[a]),
-                    ExcMessage("The inf-sup test could not factorise the H1 Gram matrix."));
-        for (unsigned int b = 0; b <= a; ++b)
-          schur(a, b) = schur(b, a) = lifted * trace_rows[b];
-      }
-
-    // restriction to the multiplier space: constrained multipliers (hanging
-    // nodes, coarser multiplier mesh) are combinations of free ones, μ = P μ_free
+  template <int dim>
+  FullMatrix<double>
+  ContactProblem<dim>::multiplier_prolongation(
+      const std::map<types::global_dof_index, unsigned int> &normal_row) const
+  {
+    // constrained multipliers (hanging nodes, coarser multiplier mesh) are
+    // combinations of free ones, μ = P μ_free
+    const unsigned int        n_rows = normal_row.size();
     std::vector<unsigned int> free_index(n_rows, numbers::invalid_unsigned_int);
     unsigned int              n_free = 0;
     for (const auto &[dof, row] : normal_row)
@@ -145,30 +219,7 @@ namespace StabilizedLagrangian
       else
         for (const auto &[column, weight] : *hanging_constraints.get_constraint_entries(dof))
           prolongation(row, free_index[normal_row.at(column)]) += weight;
-    // Pᵀ A P
-    const auto restrict = [&](const FullMatrix<double> &full) {
-      FullMatrix<double> result(n_free, n_free);
-      result.triple_product(full, prolongation, prolongation, true, false);
-      LAPACKFullMatrix<double> lapack(n_free, n_free);
-      lapack = result;
-      return lapack;
-    };
-    LAPACKFullMatrix<double> schur_free = restrict(schur);
-    LAPACKFullMatrix<double> gram_free  = restrict(gram_m);
-
-    // the smallest generalized eigenvalue of S x = β² M x
-    std::vector<Vector<double>> eigenvectors(n_free, Vector<double>(n_free));
-    schur_free.compute_generalized_eigenvalues_symmetric(gram_free, eigenvectors);
-    double smallest = std::numeric_limits<double>::max();
-    for (unsigned int k = 0; k < n_free; ++k)
-      smallest = std::min(smallest, schur_free.eigenvalue(k).real());
-
-    InfSupRecord record;
-    record.contact_mesh_size      = contact_mesh_size;
-    record.displacement_dofs      = n_u;
-    record.normal_multiplier_dofs = n_free;
-    record.beta                   = std::sqrt(std::max(smallest, 0.));
-    return record;
+    return prolongation;
   }
 
   template <int dim>
@@ -201,12 +252,22 @@ namespace StabilizedLagrangian
     pcout << "Written to " << filename << "\n";
   }
 
-  template InfSupRecord
-  ContactProblem<2>::compute_inf_sup_constant();
-  template InfSupRecord
-  ContactProblem<3>::compute_inf_sup_constant();
-  template void
-  ContactProblem<2>::run_inf_sup_test(unsigned int);
-  template void
-  ContactProblem<3>::run_inf_sup_test(unsigned int);
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                            \
+  template InfSupRecord ContactProblem<dim>::compute_inf_sup_constant();                               \
+  template void         ContactProblem<dim>::run_inf_sup_test(unsigned int);                           \
+  template void         ContactProblem<dim>::assemble_h1_gram(const AffineConstraints<double> &,       \
+                                                      TrilinosWrappers::SparseMatrix &) const; \
+  template double       ContactProblem<dim>::assemble_trace_pairing(                                   \
+      const AffineConstraints<double> &,                                                         \
+      const std::map<types::global_dof_index, unsigned int> &,                                   \
+      std::vector<TrilinosWrappers::MPI::Vector> &,                                              \
+      FullMatrix<double> &) const;                                                               \
+  template FullMatrix<double> ContactProblem<dim>::multiplier_prolongation(                            \
+      const std::map<types::global_dof_index, unsigned int> &) const;
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
 } // namespace StabilizedLagrangian

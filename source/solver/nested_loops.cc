@@ -186,13 +186,10 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "contact search");
     unsigned int       changes = 0;
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const bool in_contact = status(state, k);
-      if (in_contact != state.in_contact)
-        {
-          ++changes;
-          state.in_contact = in_contact;
-        }
+    PointRefresh       what;
+    what.status = true;
+    refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
+      changes += before.in_contact != state.in_contact;
     });
     return Utilities::MPI::sum(changes, mpi_communicator);
   }
@@ -203,11 +200,12 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "contact search");
     double             max_change = 0., max_threshold = 0.;
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const double s           = friction_law->threshold(threshold_pressure(k.contact_pressure));
-      max_change               = std::max(max_change, std::abs(s - state.friction_threshold));
-      max_threshold            = std::max(max_threshold, s);
-      state.friction_threshold = s;
+    PointRefresh       what;
+    what.threshold = true;
+    refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
+      const double s = state.friction_threshold;
+      max_change     = std::max(max_change, std::abs(s - before.friction_threshold));
+      max_threshold  = std::max(max_threshold, s);
     });
     max_change    = Utilities::MPI::max(max_change, mpi_communicator);
     max_threshold = Utilities::MPI::max(max_threshold, mpi_communicator);

@@ -24,7 +24,7 @@ namespace StabilizedLagrangian
     // components of the Dirichlet vertices: G = Σ m mᵀ over those (vertex,
     // component) pairs; the eigenvectors of G with a zero eigenvalue are the
     // motions no Dirichlet condition holds.
-    if (master_surface)
+    if (!partner->is_rigid())
       return ""; // two bodies: each is held by the other or by its conditions
     const unsigned int n_rotations = dim == 2 ? 1 : 3;
     const unsigned int n_modes     = dim + n_rotations;
@@ -152,7 +152,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::warn_if_body_behind_obstacle() const
   {
-    if (master_surface)
+    if (!partner->is_rigid())
       return;
     // most of the body on the wrong side of the surface: the obstacle's normal
     // points into the body (g_n = (x − x̄)·n < 0 means penetration)
@@ -163,7 +163,7 @@ namespace StabilizedLagrangian
         for (const unsigned int v : cell->vertex_indices())
           {
             ++vertices;
-            behind += obstacle->project(cell->vertex(v)).gap(cell->vertex(v)) < -tolerance;
+            behind += partner->project(cell->vertex(v)).gap(cell->vertex(v)) < -tolerance;
           }
     behind   = Utilities::MPI::sum(behind, mpi_communicator);
     vertices = Utilities::MPI::sum(vertices, mpi_communicator);

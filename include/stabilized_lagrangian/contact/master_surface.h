@@ -14,7 +14,7 @@
 
 #include <deal.II/numerics/rtree.h>
 
-#include <stabilized_lagrangian/obstacles/obstacle.h>
+#include <stabilized_lagrangian/contact/partner.h>
 
 #include <set>
 #include <vector>
@@ -42,7 +42,7 @@ namespace StabilizedLagrangian
      * multilinear in them, as the cells' mapping) and by its displacement
      * nodes, ordered as the nodes of FE_Q<dim−1>(k), so x(ξ) = X(ξ) + Σ N_k(ξ) u_k.
      */
-    template <int dim> class MasterSurface
+    template <int dim> class MasterSurface : public Partner<dim>
     {
     public:
       /**
@@ -63,7 +63,7 @@ namespace StabilizedLagrangian
       /** @brief The displacement DoFs of the whole master surface (in the DoFHandler's numbering).
        */
       const IndexSet &
-      dofs() const
+      dofs() const override
       {
         return surface_dofs;
       }
@@ -74,14 +74,39 @@ namespace StabilizedLagrangian
        * search tree.
        */
       void
-      update_configuration(const TrilinosWrappers::MPI::Vector &u);
+      update_configuration(const TrilinosWrappers::MPI::Vector &u) override;
 
       /**
        * @brief Closest point of the deformed surface to @p x, with the outward
        * normal there and the face and reference point of the pairing.
        */
-      Obstacles::Pairing<dim>
-      project(const Point<dim> &x) const;
+      Pairing<dim>
+      project(const Point<dim> &x) const override;
+
+      /** @brief A meshed surface kinks at its vertices. */
+      bool
+      is_flat() const override
+      {
+        return false;
+      }
+
+      bool
+      is_rigid() const override
+      {
+        return false;
+      }
+
+      /** @brief The pairing is not linearised: the solver pairs anew before each assembly. */
+      bool
+      has_pairing_derivatives() const override
+      {
+        return false;
+      }
+
+      Tensor<1, dim>
+      follow(Pairing<dim>                        &pairing,
+             const TrilinosWrappers::MPI::Vector &u,
+             const TrilinosWrappers::MPI::Vector &step_start) const override;
 
       /**
        * @brief Displacement of @p u at the reference point @p xi of face @p face.
@@ -100,17 +125,22 @@ namespace StabilizedLagrangian
        * @p xi: DoF dofs[i] moves the point by values[i] e_{components[i]}.
        */
       void
-      shape_values(const unsigned int                    face,
-                   const Point<dim - 1>                 &xi,
+      shape_values(const Pairing<dim>                   &pairing,
                    std::vector<types::global_dof_index> &dofs,
                    std::vector<unsigned int>            &components,
-                   std::vector<double>                  &values) const;
+                   std::vector<double>                  &values) const override;
 
       /** @brief The displacement DoFs of face @p face (node-major, dim per node). */
       ArrayView<const types::global_dof_index>
-      face_dof_indices(const unsigned int face) const
+      face_dof_indices(const unsigned int face) const override
       {
         return {face_dofs.data() + face * n_nodes * dim, n_nodes * dim};
+      }
+
+      ArrayView<const types::global_dof_index>
+      pairing_dof_indices(const Pairing<dim> &pairing) const override
+      {
+        return face_dof_indices(pairing.master_face);
       }
 
       /**
@@ -118,13 +148,13 @@ namespace StabilizedLagrangian
        * shared by faces is listed once per face).
        */
       std::vector<Point<dim>>
-      vertices_near(const BoundingBox<dim> &box) const;
+      vertices_near(const BoundingBox<dim> &box) const override;
 
-      /** @brief The faces sharing a node with face @p face, itself included. */
+      /** @brief The faces sharing a node with the paired face, itself included. */
       const std::vector<unsigned int> &
-      neighbours(const unsigned int face) const
+      faces_near(const Pairing<dim> &pairing) const override
       {
-        return face_neighbours[face];
+        return face_neighbours[pairing.master_face];
       }
 
     private:

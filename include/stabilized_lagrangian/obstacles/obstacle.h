@@ -1,11 +1,7 @@
 #pragma once
 
-#include <deal.II/base/point.h>
-#include <deal.II/base/tensor.h>
-
+#include <stabilized_lagrangian/contact/pairing.h>
 #include <stabilized_lagrangian/plugins.h>
-
-#include <array>
 
 namespace StabilizedLagrangian
 {
@@ -13,75 +9,9 @@ namespace StabilizedLagrangian
   {
     using namespace dealii;
 
-    /**
-     * @brief Pairing of a slave point with the master surface (doc/formulation.md,
-     * "Signs and notation").
-     *
-     * The closest point x²(ξ) on the master surface, the unit normal n there
-     * pointing out of the master, and dim−1 unit tangents completing an
-     * orthonormal basis. The gap of a slave position x is g_n = (x − x²)·n.
-     */
-    template <int dim> struct Pairing
-    {
-      Point<dim>                          master_point;
-      Tensor<1, dim>                      normal;
-      std::array<Tensor<1, dim>, dim - 1> tangents;
-      /**
-       * ∂n/∂x and ∂t_α/∂x at the slave position: how the pairing moves with the
-       * slave point, which the generalized Newton linearises (zero for a plane).
-       */
-      Tensor<2, dim>                      normal_gradient;
-      std::array<Tensor<2, dim>, dim - 1> tangent_gradients;
-      /**
-       * With a deformable master (Contact::MasterSurface): the master face and
-       * the reference point ξ on it. The pairing freezes ξ, n and t_α; the master
-       * point x²(ξ) follows the master's displacement. −1 for a rigid obstacle.
-       */
-      int            master_face = -1;
-      Point<dim - 1> master_reference_point;
-
-      /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
-      double
-      gap(const Point<dim> &x) const
-      {
-        return (x - master_point) * normal;
-      }
-
-      /** @brief Components of a vector in the tangent basis, (t_α · v). */
-      Tensor<1, dim - 1>
-      tangential_components(const Tensor<1, dim> &v) const
-      {
-        Tensor<1, dim - 1> components;
-        for (unsigned int a = 0; a < dim - 1; ++a)
-          components[a] = tangents[a] * v;
-        return components;
-      }
-
-      /** @brief The vector Σ_α c_α t_α of tangent-basis components @p c. */
-      Tensor<1, dim>
-      from_tangential_components(const Tensor<1, dim - 1> &c) const
-      {
-        Tensor<1, dim> v;
-        for (unsigned int a = 0; a < dim - 1; ++a)
-          v += c[a] * tangents[a];
-        return v;
-      }
-    };
-
-    /**
-     * @brief Orthonormal tangents completing the unit normal @p n.
-     */
-    template <int dim>
-    std::array<Tensor<1, dim>, dim - 1>
-    tangent_basis(const Tensor<1, dim> &n);
-
-    /**
-     * @brief ∂t_α/∂n of tangent_basis() (entry [α][i][j] = ∂t_α,i/∂n_j), for the
-     * chain rule ∂t_α/∂x = ∂t_α/∂n · ∂n/∂x.
-     */
-    template <int dim>
-    std::array<Tensor<2, dim>, dim - 1>
-    tangent_basis_derivative(const Tensor<1, dim> &n);
+    using Contact::Pairing;
+    using Contact::tangent_basis;
+    using Contact::tangent_basis_derivative;
 
     /**
      * @brief Interface of rigid analytic obstacles (the master surface).

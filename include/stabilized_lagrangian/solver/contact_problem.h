@@ -20,7 +20,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/contact/friction_law.h>
-#include <stabilized_lagrangian/contact/master_surface.h>
+#include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
@@ -46,9 +46,9 @@ namespace StabilizedLagrangian
    */
   template <int dim> struct ContactPointState
   {
-    Obstacles::Pairing<dim> pairing;
-    double                  friction_threshold = 0.;
-    bool                    in_contact         = false;
+    Contact::Pairing<dim> pairing;
+    double                friction_threshold = 0.;
+    bool                  in_contact         = false;
   };
 
   /**
@@ -225,8 +225,8 @@ namespace StabilizedLagrangian
     locally_owned_multiplier_components() const;
 
     /**
-     * @brief Re-pair every contact point with the master (the obstacle, or the
-     * deformed master surface) at the current positions; with @p resegment,
+     * @brief Re-pair every contact point with the contact partner at the
+     * current positions; with @p resegment,
      * first update the segments of the contact faces (update_segments();
      * both in contact_points.cc).
      */
@@ -423,10 +423,46 @@ namespace StabilizedLagrangian
      */
     unsigned int
     restore_checkpoint();
+    /** Refine the mesh again as refinement_history lists it, cell by cell. */
+    void
+    replay_refinements();
+    /** Cut the output files back to the checkpoint's rows and continue them. */
+    void
+    continue_outputs(const unsigned long            cycles_bytes,
+                     const StatisticsWriter::State &statistics_state);
+
+    // --- inf_sup_test.cc: the pieces of β_h ---
+    /** The H¹ Gram matrix K of the displacement, with @p constraints. */
+    void
+    assemble_h1_gram(const AffineConstraints<double> &constraints,
+                     TrilinosWrappers::SparseMatrix  &gram_u) const;
+    /**
+     * The rows of B, B_aj = ∫Γc ψ_a (φ_j·n), and the multiplier Gram matrix M
+     * of the mesh-dependent norm, for the λ_n DoFs numbered by @p normal_row;
+     * returns the largest contact face diameter.
+     */
+    double
+    assemble_trace_pairing(const AffineConstraints<double>                       &constraints,
+                           const std::map<types::global_dof_index, unsigned int> &normal_row,
+                           std::vector<TrilinosWrappers::MPI::Vector>            &trace_rows,
+                           FullMatrix<double>                                    &gram_m) const;
+    /** P of μ = P μ_free: the λ_n DoFs as combinations of the unconstrained ones. */
+    FullMatrix<double>
+    multiplier_prolongation(
+        const std::map<types::global_dof_index, unsigned int> &normal_row) const;
 
     // --- contact_problem.cc: the mesh, and the setup after each refinement ---
     void
     make_grid();
+    /** Resolve the boundaries given by name to the mesh's ids and check the contact ones. */
+    void
+    resolve_boundaries();
+    /** The material slot of each body given in a `Material n/Bodies` entry. */
+    void
+    assign_material_slots();
+    /** Throw an InputError naming @p entry when the mesh has no boundary @p id. */
+    void
+    require_boundary(const types::boundary_id id, const std::string &entry) const;
     /** DoFs, sparsity, contact points and history after the mesh changed. */
     void
     setup_after_refinement();
@@ -550,23 +586,17 @@ namespace StabilizedLagrangian
     // --- contact_points.cc: pairing, segments, kinematics, statuses, thresholds ---
     void
     setup_contact_points();
-    /** The pairing of a slave position with the master: the obstacle, or the master surface. */
-    Obstacles::Pairing<dim>
-    pair(const Point<dim> &x) const;
-    /**
-     * With a deformable master: move the frozen pairing's master point x²(ξ)
-     * with the master's displacement and make the slip increment relative,
-     * Δu¹ − Δu²(ξ). Nothing for a rigid obstacle.
-     */
-    void
-    follow_master(Obstacles::Pairing<dim> &pairing, ContactKinematics<dim> &k) const;
     /** Whether any material is finite strain. */
     bool
     finite_strain() const;
-    /** Call f(state, kinematics) at every locally owned contact point. */
+    /**
+     * At every locally owned contact point, evaluate what @p what names
+     * (evaluate_point_state()) and call f(before, state, kinematics) with the
+     * state before and after.
+     */
     template <typename Function>
     void
-    for_each_contact_point(const Function &f)
+    refresh_contact_points(const PointRefresh &what, const Function &f)
     {
       FaceEvaluator evaluator(*this, contact_quadrature);
       for (const auto &face : contact_faces)
@@ -574,12 +604,23 @@ namespace StabilizedLagrangian
           evaluator.reinit(face, ghosted_solution);
           for (unsigned int q = 0; q < evaluator.n_points(); ++q)
             {
-              ContactPointState<dim> &state = contact_states[face.first_point + q];
-              ContactKinematics<dim>  k     = evaluator.kinematics(q);
-              follow_master(state.pairing, k);
-              f(state, k);
+              ContactPointState<dim>      &state  = contact_states[face.first_point + q];
+              const ContactPointState<dim> before = state;
+              ContactKinematics<dim>       k      = evaluator.kinematics(q);
+              evaluate_point_state(state, k, what);
+              f(before, state, k);
             }
         }
+    }
+    /** Call f(state, kinematics) at every locally owned contact point, its state frozen. */
+    template <typename Function>
+    void
+    for_each_contact_point(const Function &f)
+    {
+      refresh_contact_points(PointRefresh(),
+                             [&](const ContactPointState<dim> &,
+                                 ContactPointState<dim>       &state,
+                                 const ContactKinematics<dim> &k) { f(state, k); });
     }
     /**
      * The point-wise stabilized Lagrangian with the status and threshold of
@@ -588,12 +629,16 @@ namespace StabilizedLagrangian
     Contact::PointResponse<dim - 1>
     point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /**
-     * Re-evaluate at the current iterate what the loops folded into the
-     * generalized Newton would otherwise freeze: pairing, threshold, status;
-     * and follow the deformable master (follow_master).
+     * The one evaluation of a contact point's state at the iterate, which the
+     * loops, the folded refresh in the assembly and the output share: pair the
+     * point anew (with @p what.pairing), let the pairing follow the partner's
+     * displacement (the slip increment becomes relative, Δu¹ − Δu²(ξ)), then
+     * evaluate the friction threshold and the status as @p what names.
      */
     void
-    refresh_folded_state(ContactPointState<dim> &state, ContactKinematics<dim> &k) const;
+    evaluate_point_state(ContactPointState<dim> &state,
+                         ContactKinematics<dim> &k,
+                         const PointRefresh     &what) const;
     /** The contact status χ of seed eq. (5) at a point, a gap within touching_gap counting as 0. */
     bool
     status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
@@ -613,6 +658,16 @@ namespace StabilizedLagrangian
     assemble_volume(const bool assemble_matrix);
     void
     assemble_contact(const bool assemble_matrix);
+    /**
+     * Add the tractions of the Neumann conditions on @p cell's faces to
+     * @p cell_rhs, and the external force they make to external_force.
+     */
+    void
+    add_neumann_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                      const std::vector<types::global_dof_index>           &dofs,
+                      FEFaceValues<dim>                                    &neumann_values,
+                      Vector<double>                                       &cell_rhs,
+                      Vector<double>                                       &cell_external);
     /** Add a local system to the global one (with the tangent predictor, if pending). */
     void
     add_to_global_system(const FullMatrix<double>                   &local_matrix,
@@ -692,8 +747,11 @@ namespace StabilizedLagrangian
     /** the default model first, then the slots in use; material_slots maps a body's id to one */
     std::vector<Materials::BodyMaterial<dim>>  materials;
     std::map<types::material_id, unsigned int> material_slots;
-    /** the deformable master's surface, when `Contact/Master boundary ids` is set */
-    std::unique_ptr<Contact::MasterSurface<dim>> master_surface;
+    /**
+     * the contact partner, built with the DoFs (dofs.cc): the deformable
+     * master's surface when `Contact/Master boundary ids` is set, else the obstacle
+     */
+    std::unique_ptr<Contact::Partner<dim>> partner;
     /** per contact face: the master faces whose DoFs the sparsity pattern couples to it */
     std::vector<std::vector<unsigned int>>       sparsity_master_faces;
     bool                                         sparsity_ready = false;

@@ -15,6 +15,17 @@ namespace StabilizedLagrangian
   };
 
   /**
+   * @brief Which parts of a contact point's state are evaluated afresh at the
+   * iterate (ContactProblem::evaluate_point_state): the quantity of each loop.
+   */
+  struct PointRefresh
+  {
+    bool pairing   = false; ///< pairing, normal and tangents (geometry loop)
+    bool threshold = false; ///< friction threshold (friction loop)
+    bool status    = false; ///< contact status (status loop)
+  };
+
+  /**
    * @brief Which loops of the nest iterate as fixed points and which are
    * linearised in the generalized Newton (folded into it: their quantity is
    * re-evaluated at every Newton iterate), named once for the whole solver.
@@ -22,7 +33,8 @@ namespace StabilizedLagrangian
    * The methods come from `Nonlinear solver/<loop>/Method`; whether a loop has
    * anything to iterate comes from the scene (a flat obstacle in small strain
    * never moves the pairing; a frictionless or Tresca law never moves the
-   * threshold). A fixed point that cycles or does not converge in a step is
+   * threshold); how the pairing is linearised comes from the contact partner.
+   * A fixed point that cycles or does not converge in a step is
    * folded for that step only (fold()).
    */
   class LoopPolicy
@@ -64,6 +76,56 @@ namespace StabilizedLagrangian
       return can_change[index(loop)];
     }
 
+    /**
+     * What the contact partner's pairing offers (set at setup): its derivatives
+     * with respect to the slave position, and whether they vanish (a plane).
+     */
+    void
+    set_pairing(const bool has_derivatives, const bool flat)
+    {
+      pairing_derivatives = has_derivatives;
+      pairing_flat        = flat;
+    }
+
+    /**
+     * Whether the folded geometry loop pairs each point anew within the
+     * assembly and linearises the pairing there (a rigid obstacle).
+     */
+    bool
+    pairing_linearised() const
+    {
+      return linearised(Loop::geometry) && pairing_derivatives;
+    }
+
+    /** Whether the linearised pairing turns with the slave point (a curved obstacle). */
+    bool
+    pairing_turns() const
+    {
+      return pairing_linearised() && !pairing_flat;
+    }
+
+    /**
+     * Whether the folded geometry loop pairs every point anew before each
+     * assembly, frozen within it (a meshed partner, whose pairing is not
+     * linearised).
+     */
+    bool
+    pairs_before_assembly() const
+    {
+      return linearised(Loop::geometry) && !pairing_derivatives;
+    }
+
+    /** What the folded loops re-evaluate at every contact point of every Newton iterate. */
+    PointRefresh
+    at_iterate() const
+    {
+      PointRefresh what;
+      what.pairing   = pairing_linearised();
+      what.threshold = linearised(Loop::friction) && can_change_quantity(Loop::friction);
+      what.status    = linearised(Loop::status);
+      return what;
+    }
+
     /** Fold @p loop into Newton (or restore it with @p value false); returns what it was. */
     bool
     fold(const Loop loop, const bool value = true)
@@ -80,7 +142,9 @@ namespace StabilizedLagrangian
       return static_cast<unsigned int>(loop);
     }
 
-    std::array<bool, 3> linearised_loops = {{false, false, false}};
-    std::array<bool, 3> can_change       = {{true, true, true}};
+    std::array<bool, 3> linearised_loops    = {{false, false, false}};
+    std::array<bool, 3> can_change          = {{true, true, true}};
+    bool                pairing_derivatives = true;
+    bool                pairing_flat        = false;
   };
 } // namespace StabilizedLagrangian
