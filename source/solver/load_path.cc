@@ -85,20 +85,87 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::solve_load_path(const bool resumed)
   {
-    const bool   root         = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    const double nominal_step = load_stepping.end_time / load_stepping.n_steps;
+    LoadStepController steps(
+        load_stepping.end_time, load_stepping.n_steps, load_stepping.max_cuts, controller);
     if (!resumed)
-      {
-        if (root)
-          std::filesystem::create_directories(output_parameters.directory);
-        statistics.open(output_parameters.directory, dim, root);
-        pvd_records.clear();
-        active_set.clear();
-        controller      = StepController{0, nominal_step, 0};
-        path_start_work = work;
-      }
+      start_load_path(steps);
     timer.reset();
+    print_path_banner();
+    if (!resumed)
+      output_results(0, 0.);
 
+    PathLog      path(time, work);
+    StepSnapshot saved;
+    while (steps.before_end(time))
+      {
+        const double step_size = steps.next_step_size(time);
+        saved.save(*this);
+        StepStatistics stats;
+        stats.step      = steps.step() + 1;
+        stats.step_size = step_size;
+        stats.cuts      = steps.consecutive_cuts();
+        Timer step_clock;
+        time = saved.time + step_size;
+        apply_dirichlet_values(time);
+        if (!solve_load_step(stats))
+          {
+            saved.restore(*this);
+            if (!cut_load_step(steps))
+              return false;
+            continue;
+          }
+        steps.accept();
+        record_load_step(stats, path, step_clock);
+        const bool checkpointed = output_parameters.checkpoint_interval > 0 &&
+                                  steps.step() % output_parameters.checkpoint_interval == 0;
+        if (checkpointed)
+          write_checkpoint();
+        if (stop_at_wall_time_limit(steps, path, checkpointed))
+          return false;
+      }
+    finish_load_path(steps, path);
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::StepSnapshot::save(const ContactProblem &problem)
+  {
+    solution       = problem.solution;
+    contact_states = problem.contact_states;
+    contact_faces  = problem.contact_faces;
+    time           = problem.time;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::StepSnapshot::restore(ContactProblem &problem) const
+  {
+    problem.solution       = solution;
+    problem.contact_states = contact_states;
+    problem.contact_faces  = contact_faces;
+    problem.time           = time;
+    problem.update_ghosts();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::start_load_path(LoadStepController &steps)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    if (root)
+      std::filesystem::create_directories(output_parameters.directory);
+    statistics.open(output_parameters.directory, dim, root);
+    pvd_records.clear();
+    active_set.clear();
+    steps.restart();
+    path_start_work = work;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::print_path_banner() const
+  {
     pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
           << " cells, " << n_u << " displacement DoFs + " << n_multipliers
           << " multiplier DoFs on the contact boundary, "
@@ -126,145 +193,116 @@ namespace StabilizedLagrangian
                                      std::pair{"status", Loop::status}})
       if (loops.linearised(loop))
         pcout << "  " << name << " loop folded into the generalized Newton\n";
+  }
 
-    if (!resumed)
-      output_results(0, 0.);
-
-    const double  smallest_step = nominal_step / std::pow(2., load_stepping.max_cuts);
-    unsigned int &step          = controller.step;
-    double       &step_size     = controller.step_size;
-    Timer         wall_clock;
-    const double  path_start_time = time;
-    WorkCounters  at_step_start   = work;
-    // the most contact points in contact in any step, and their number
-    unsigned int most_points_in_contact = 0, contact_point_count = 0;
-    const auto   work_on_path = [&]() {
-      return WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
-                          work.assemblies - path_start_work.assemblies,
-                          work.jacobians - path_start_work.jacobians};
-    };
-    // steps whose state breaks the friction law (the first few are named)
-    unsigned int friction_law_warnings = 0;
-    while (time < load_stepping.end_time * (1. - 1e-12))
+  template <int dim>
+  bool
+  ContactProblem<dim>::cut_load_step(LoadStepController &steps)
+  {
+    const unsigned int step = steps.step();
+    if (!unrecoverable_failure.empty())
       {
-        step_size = std::min(step_size, load_stepping.end_time - time);
-        const TrilinosWrappers::MPI::Vector       saved_solution = solution;
-        const std::vector<ContactPointState<dim>> saved_states   = contact_states;
-        const std::vector<ContactFace>            saved_faces    = contact_faces;
-        const double                              saved_time     = time;
-
-        StepStatistics stats;
-        stats.step      = step + 1;
-        stats.step_size = step_size;
-        stats.cuts      = controller.consecutive_cuts;
-        Timer step_clock;
-        time = saved_time + step_size;
-        apply_dirichlet_values(time);
-        const bool converged = solve_load_step(stats);
-        if (!converged)
-          {
-            solution       = saved_solution;
-            contact_states = saved_states;
-            contact_faces  = saved_faces;
-            time           = saved_time;
-            update_ghosts();
-            if (!unrecoverable_failure.empty())
-              {
-                pcout << "ERROR: load step " << step + 1 << " from t = " << time << ": "
-                      << unrecoverable_failure
-                      << ", which a smaller load step cannot cure. The results of the " << step
-                      << " converged steps are in " << output_parameters.directory << ".\n";
-                return false;
-              }
-            // the smallest step is the nominal one halved `Maximum step cuts`
-            // times: a run cannot crawl on with ever smaller steps
-            if (step_size <= smallest_step * (1. + 1e-12))
-              {
-                pcout << "ERROR: load step " << step + 1 << " from t = " << time
-                      << " did not converge after " << load_stepping.max_cuts
-                      << " step cuts (Load stepping/Maximum step cuts), with the step " << step_size
-                      << ". The results of the " << step << " converged steps are in "
-                      << output_parameters.directory << ".\n";
-                return false;
-              }
-            ++controller.consecutive_cuts;
-            step_size /= 2.;
-            pcout << "  step did not converge; cutting the step to " << step_size << "\n";
-            continue;
-          }
-        ++step;
-        controller.consecutive_cuts = 0;
-        stats.failed_newton_iterations =
-            work.newton_iterations - at_step_start.newton_iterations - stats.newton_iterations;
-        stats.assemblies = work.assemblies - at_step_start.assemblies;
-        stats.jacobians  = work.jacobians - at_step_start.jacobians;
-        at_step_start    = work;
-        material_history.commit();
-        stats.time = time;
-        {
-          TimerOutput::Scope scope(timer, "contact search");
-          compute_contact_statistics(stats);
-        }
-        last_normal_force      = stats.normal_force;
-        most_points_in_contact = std::max(most_points_in_contact, stats.points_in_contact);
-        contact_point_count    = stats.contact_points;
-        output_results(step, time);
-        step_start      = ghosted_solution;
-        stats.wall_time = step_clock.wall_time();
-        statistics.write(stats);
-        print_step_line(stats, wall_clock.wall_time());
-        if (stats.friction_law_violations > 0 && ++friction_law_warnings <= 3)
-          pcout << "WARNING: load step " << step << ": " << stats.friction_law_report
-                << " The Newton criterion accepted this state"
-                << (solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled
-                        ? ""
-                        : " (with `Nonlinear solver/Newton/Residual = scaled` it would not: the "
-                          "absolute residual weighs a stick point's slip by r_t)")
-                << "; column friction_law_violations of statistics.csv"
-                << (friction_law_warnings == 3 ? " (no further warnings)" : "") << ".\n";
-        // grow back towards the nominal step after a cut
-        step_size               = std::min(2. * step_size, nominal_step);
-        const bool checkpointed = output_parameters.checkpoint_interval > 0 &&
-                                  step % output_parameters.checkpoint_interval == 0;
-        if (checkpointed)
-          write_checkpoint();
-        // the slowest rank's clock, so that every rank stops at the same step
-        const double elapsed = Utilities::MPI::max(run_clock.wall_time(), mpi_communicator);
-        // the load path's own pace (setup and earlier cycles left out)
-        const double needed = Utilities::MPI::max(wall_clock.wall_time(), mpi_communicator) /
-                              (time - path_start_time) * (load_stepping.end_time - path_start_time);
-        const double limit = load_stepping.wall_time_limit;
-        if (step == 1 && limit > 0. && needed > limit)
-          pcout << "WARNING: at the pace of the first load step the load path needs ~" << needed
-                << " s, more than `Load stepping/Wall time limit` = " << limit
-                << " s: the run will stop at the limit before its end.\n";
-        if (step == 1 && limit == 0. && needed > seconds_to_warn_of)
-          pcout << "WARNING: at the pace of the first load step the load path needs ~"
-                << needed / 3600. << " h. Consider fewer load steps, or a `Load stepping/Wall "
-                << "time limit` with checkpoints (`Output/Checkpoint interval`).\n";
-        if (limit > 0. && time < load_stepping.end_time * (1. - 1e-12))
-          {
-            if (elapsed > limit)
-              {
-                if (output_parameters.checkpoint_interval > 0 && !checkpointed)
-                  write_checkpoint();
-                pcout << "Stopped at the wall-time limit (Load stepping/Wall time limit = "
-                      << load_stepping.wall_time_limit << " s) after load step " << step
-                      << " at t = " << time << ", " << elapsed << " s into the run. The results "
-                      << "of the " << step << " converged steps are in "
-                      << output_parameters.directory
-                      << (output_parameters.checkpoint_interval > 0
-                              ? "; `--resume` continues from the checkpoint written now.\n"
-                              : "; with `Output/Checkpoint interval` > 0 it could be resumed.\n");
-                wall_time_limit_reached = true;
-                write_run_summary(step, wall_clock.wall_time(), work_on_path());
-                return false;
-              }
-          }
+        pcout << "ERROR: load step " << step + 1 << " from t = " << time << ": "
+              << unrecoverable_failure
+              << ", which a smaller load step cannot cure. The results of the " << step
+              << " converged steps are in " << output_parameters.directory << ".\n";
+        return false;
       }
+    const double failed_size = steps.step_size();
+    if (!steps.cut())
+      {
+        pcout << "ERROR: load step " << step + 1 << " from t = " << time
+              << " did not converge after " << steps.max_cuts()
+              << " step cuts (Load stepping/Maximum step cuts), with the step " << failed_size
+              << ". The results of the " << step << " converged steps are in "
+              << output_parameters.directory << ".\n";
+        return false;
+      }
+    pcout << "  step did not converge; cutting the step to " << steps.step_size() << "\n";
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::record_load_step(StepStatistics &stats,
+                                        PathLog        &path,
+                                        const Timer    &step_clock)
+  {
+    stats.failed_newton_iterations =
+        work.newton_iterations - path.at_step_start.newton_iterations - stats.newton_iterations;
+    stats.assemblies   = work.assemblies - path.at_step_start.assemblies;
+    stats.jacobians    = work.jacobians - path.at_step_start.jacobians;
+    path.at_step_start = work;
+    material_history.commit();
+    stats.time = time;
+    {
+      TimerOutput::Scope scope(timer, "contact search");
+      compute_contact_statistics(stats);
+    }
+    last_normal_force           = stats.normal_force;
+    path.most_points_in_contact = std::max(path.most_points_in_contact, stats.points_in_contact);
+    path.contact_point_count    = stats.contact_points;
+    output_results(stats.step, time);
+    step_start      = ghosted_solution;
+    stats.wall_time = step_clock.wall_time();
+    statistics.write(stats);
+    print_step_line(stats, path.wall_clock.wall_time());
+    if (stats.friction_law_violations > 0 && ++path.friction_law_warnings <= 3)
+      pcout << "WARNING: load step " << stats.step << ": " << stats.friction_law_report
+            << " The Newton criterion accepted this state"
+            << (solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled
+                    ? ""
+                    : " (with `Nonlinear solver/Newton/Residual = scaled` it would not: the "
+                      "absolute residual weighs a stick point's slip by r_t)")
+            << "; column friction_law_violations of statistics.csv"
+            << (path.friction_law_warnings == 3 ? " (no further warnings)" : "") << ".\n";
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::stop_at_wall_time_limit(const LoadStepController &steps,
+                                               const PathLog            &path,
+                                               const bool                checkpointed)
+  {
+    const unsigned int step = steps.step();
+    // the slowest rank's clock, so that every rank stops at the same step
+    const double elapsed = Utilities::MPI::max(run_clock.wall_time(), mpi_communicator);
+    // the load path's own pace (setup and earlier cycles left out)
+    const double needed = Utilities::MPI::max(path.wall_clock.wall_time(), mpi_communicator) /
+                          (time - path.start_time) * (steps.end_time() - path.start_time);
+    const double limit = load_stepping.wall_time_limit;
+    if (step == 1 && limit > 0. && needed > limit)
+      pcout << "WARNING: at the pace of the first load step the load path needs ~" << needed
+            << " s, more than `Load stepping/Wall time limit` = " << limit
+            << " s: the run will stop at the limit before its end.\n";
+    if (step == 1 && limit == 0. && needed > seconds_to_warn_of)
+      pcout << "WARNING: at the pace of the first load step the load path needs ~" << needed / 3600.
+            << " h. Consider fewer load steps, or a `Load stepping/Wall "
+            << "time limit` with checkpoints (`Output/Checkpoint interval`).\n";
+    const bool stop = limit > 0. && steps.before_end(time) && elapsed > limit;
+    if (!stop)
+      return false;
+    if (output_parameters.checkpoint_interval > 0 && !checkpointed)
+      write_checkpoint();
+    pcout << "Stopped at the wall-time limit (Load stepping/Wall time limit = " << limit
+          << " s) after load step " << step << " at t = " << time << ", " << elapsed
+          << " s into the run. The results of the " << step << " converged steps are in "
+          << output_parameters.directory
+          << (output_parameters.checkpoint_interval > 0
+                  ? "; `--resume` continues from the checkpoint written now.\n"
+                  : "; with `Output/Checkpoint interval` > 0 it could be resumed.\n");
+    wall_time_limit_reached = true;
+    write_run_summary(step, path.wall_clock.wall_time(), work_on_path());
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::finish_load_path(const LoadStepController &steps, const PathLog &path)
+  {
     std::ostringstream mean;
     mean << std::fixed << std::setprecision(2)
-         << static_cast<double>(statistics.cumulative_newton_iterations()) / step;
+         << static_cast<double>(statistics.cumulative_newton_iterations()) / steps.step();
     pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
           << ", mean per load step: " << mean.str()
           << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
@@ -272,15 +310,24 @@ namespace StabilizedLagrangian
           << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n";
     // a scene that runs but cannot be what was meant: the contact surface is
     // not the one that touches the obstacle, or the obstacle faces away
-    if (most_points_in_contact <= 1 && contact_point_count > 1)
-      pcout << "WARNING: at most " << most_points_in_contact << " of the " << contact_point_count
+    if (path.most_points_in_contact <= 1 && path.contact_point_count > 1)
+      pcout << "WARNING: at most " << path.most_points_in_contact << " of the "
+            << path.contact_point_count
             << " contact points was in contact in any load step. Is `Contact/Contact boundary "
                "ids` the surface that meets the obstacle, and does the obstacle's normal point "
                "towards the body?\n";
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
-    write_run_summary(step, wall_clock.wall_time(), work_on_path());
-    return true;
+    write_run_summary(steps.step(), path.wall_clock.wall_time(), work_on_path());
+  }
+
+  template <int dim>
+  WorkCounters
+  ContactProblem<dim>::work_on_path() const
+  {
+    return WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
+                        work.assemblies - path_start_work.assemblies,
+                        work.jacobians - path_start_work.jacobians};
   }
 
   template <int dim>
@@ -351,15 +398,15 @@ namespace StabilizedLagrangian
             dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
         bc.displacement->check_finite(mpi_communicator);
       }
-    // The increment is not added to the iterate here: the first Newton solve
-    // of the step applies it together with the tangent predictor.
+    // The increment is not added to the iterate here: the step's first Newton
+    // iteration, the tangent predictor (predictor_step()), applies it.
     TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
     for (const auto &[index, value] : values)
       if (locally_owned.is_element(index))
         increment(index) = value - solution(index);
     increment.compress(VectorOperation::insert);
     hanging_constraints.distribute(increment);
-    dirichlet_predictor = increment.linfty_norm() > 0.;
+    dirichlet_increment_nonzero = increment.linfty_norm() > 0.;
     dirichlet_increment.reinit(locally_owned, locally_relevant, mpi_communicator);
     dirichlet_increment = increment;
   }
@@ -369,6 +416,17 @@ namespace StabilizedLagrangian
 #define SL_INSTANTIATE(dim)                                                                        \
   template bool ContactProblem<dim>::run(bool);                                                    \
   template bool ContactProblem<dim>::solve_load_path(bool);                                        \
+  template void ContactProblem<dim>::StepSnapshot::save(const ContactProblem<dim> &);              \
+  template void ContactProblem<dim>::StepSnapshot::restore(ContactProblem<dim> &) const;           \
+  template void ContactProblem<dim>::start_load_path(LoadStepController &);                        \
+  template void ContactProblem<dim>::print_path_banner() const;                                    \
+  template bool ContactProblem<dim>::cut_load_step(LoadStepController &);                          \
+  template void ContactProblem<dim>::record_load_step(StepStatistics &, PathLog &, const Timer &); \
+  template bool ContactProblem<dim>::stop_at_wall_time_limit(                                      \
+      const LoadStepController &, const PathLog &, bool);                                          \
+  template void         ContactProblem<dim>::finish_load_path(const LoadStepController &,          \
+                                                      const PathLog &);                    \
+  template WorkCounters ContactProblem<dim>::work_on_path() const;                                 \
   template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
       const;                                                                                       \
   template void ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;        \

@@ -62,129 +62,194 @@ namespace StabilizedLagrangian
                                    const unsigned int j,
                                    const unsigned int i)
   {
-    // The first assembly (with the Jacobian) is at the iterate the outer
-    // loops hand over; afterwards the residual at each new iterate comes from
-    // the line search, and the Jacobian is assembled only when another solve
-    // follows.
-    assemble_newton_system(true);
-    bool   jacobian_current  = true;
-    double first_measure     = 0.;
-    double previous_residual = std::numeric_limits<double>::infinity();
     // the open/stick/slip statuses of the iterates, when Newton decides them
-    const bool     statuses_folded = loops.linearised(Loop::status);
-    ActiveSetWatch watch;
-    for (unsigned int iteration = 0;; ++iteration)
+    NewtonProgress progress(loops.linearised(Loop::status));
+    // No Newton loop of this attempt has converged yet (a loop that fails
+    // fails the attempt): this is the step's first Newton solve.
+    if (stats.inner_loops.empty() && dirichlet_increment_nonzero)
       {
-        if (!inadmissible_state.empty())
+        if (!predictor_step(stats, progress))
+          return false;
+      }
+    else
+      // The first assembly (with the Jacobian) is at the iterate the outer
+      // loops hand over; afterwards the residual at each new iterate comes
+      // from the line search, and the Jacobian is assembled only when another
+      // solve follows.
+      assemble_newton_system(true);
+    for (;;)
+      {
+        NewtonMeasure measured;
+        if (!measure_iterate(progress, measured))
+          return false;
+        if (measured.measure <= measured.tolerance)
           {
-            pcout << "  Newton: " << inadmissible_state << "\n";
-            return false;
-          }
-        const double residual = residual_norm();
-        if (!std::isfinite(residual))
-          {
-            pcout << "  Newton: the residual is not finite\n";
-            return false;
-          }
-        const double scaled = scaled_residual().largest();
-        const double measure =
-            solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled ? scaled
-                                                                                        : residual;
-        if (iteration == 0)
-          first_measure = measure;
-        if (output_parameters.log_newton)
-          log_iterate(iteration);
-        const bool   predictor = dirichlet_predictor;
-        const double tolerance =
-            solver_parameters.newton_tolerance *
-            (solver_parameters.newton_criterion == Parameters::ResidualCriterion::relative
-                 ? first_measure
-                 : 1.);
-        if (!predictor && measure <= tolerance)
-          {
-            stats.inner_loops.push_back(InnerLoopRecord{k, j, i, iteration, residual, scaled, 0});
-            stats.newton_iterations += iteration;
-            stats.final_residual = residual;
-            stats.final_scaled   = scaled;
+            stats.inner_loops.push_back(InnerLoopRecord{
+                k, j, i, progress.iteration, measured.residual, measured.scaled, 0});
+            stats.newton_iterations += progress.iteration;
+            stats.final_residual = measured.residual;
+            stats.final_scaled   = measured.scaled;
             return true;
           }
-        if (iteration == solver_parameters.newton_max_iterations)
-          {
-            pcout << "  Newton: residual " << residual << " N (" << measure
-                  << " against the criterion's tolerance " << tolerance << ") after " << iteration
-                  << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
-            return false;
-          }
-        if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
-          {
-            pcout << "  Newton: " << stats.newton_iterations + iteration
-                  << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
-                     "per load step)\n";
-            return false;
-          }
-
-        // nothing in contact and a rigid motion free: the system is singular,
-        // and no smaller load step makes it less so
-        if (!free_rigid_motions.empty() && points_in_contact() == 0)
-          {
-            unrecoverable_failure =
-                "the body is not supported: no contact point is in contact (the loads pull it off "
-                "the obstacle) and the Dirichlet conditions leave " +
-                free_rigid_motions +
-                " free. Hold it by a prescribed displacement, or load it towards the obstacle";
-            pcout << "  Newton: " << unrecoverable_failure << ".\n";
-            return false;
-          }
-        if (statuses_folded)
-          watch.seen.push_back(point_statuses());
-        if (!jacobian_current)
-          assemble_newton_system(true);
-        TrilinosWrappers::MPI::Vector update(locally_owned, mpi_communicator);
-        system_rhs *= -1.;
-        bool solved;
-        {
-          TimerOutput::Scope scope(timer, "linear solve");
-          solved = direct_solver->solve(system_matrix, update, system_rhs);
-        }
-        ++work.newton_iterations;
-        if (!direct_solver->last_retry().empty())
-          pcout << "  Newton: " << direct_solver->last_retry() << "\n";
-        if (!solved)
-          {
-            const std::string &error = direct_solver->last_error();
-            pcout << "  Newton: the linear solver failed: " << error << ".\n";
-            // a smaller load step has the same matrix size and structure
-            if (error.find("memory") != std::string::npos ||
-                error.find("work space") != std::string::npos)
-              unrecoverable_failure = "the linear solver failed: " + error;
-            if (error.find("singular") != std::string::npos)
-              pcout << "  The Newton system is singular. Usual "
-                       "causes: a rigid-body motion the boundary conditions leave free; a sticking "
-                       "contact point whose tangential displacement is prescribed (a Dirichlet "
-                       "condition on a node of the contact boundary, with friction: its friction "
-                       "multiplier is then undetermined, and `Linear solver/Null pivot detection "
-                       "= true` picks one of the equivalent values); a pair that violates the "
-                       "inf-sup condition (Q1/P2).\n";
-            return false;
-          }
-        newton_constraints.distribute(update);
-        if (predictor)
-          {
-            // the Dirichlet increment (zero in the update's constrained rows)
-            TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
-            increment = dirichlet_increment;
-            update += increment;
-            dirichlet_predictor = false;
-          }
-        // the predictor step is taken whole: it carries the boundary data
-        line_search(update,
-                    residual,
-                    previous_residual,
-                    predictor ? 0 : solver_parameters.line_search_steps,
-                    statuses_folded ? &watch : nullptr);
-        previous_residual = residual;
-        jacobian_current  = false;
+        TrilinosWrappers::MPI::Vector update;
+        if (!newton_direction(stats, progress, measured, update))
+          return false;
+        advance(progress, update, measured.residual, solver_parameters.line_search_steps);
       }
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::predictor_step(StepStatistics &stats, NewtonProgress &progress)
+  {
+    // K Δū is added to the residual of this assembly alone
+    dirichlet_predictor = true;
+    assemble_newton_system(true);
+    dirichlet_predictor = false;
+    NewtonMeasure                 measured;
+    TrilinosWrappers::MPI::Vector update;
+    if (!measure_iterate(progress, measured) ||
+        !newton_direction(stats, progress, measured, update))
+      return false;
+    // the Dirichlet increment (zero in the update's constrained rows)
+    TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
+    increment = dirichlet_increment;
+    update += increment;
+    // the predictor step is taken whole: it carries the boundary data
+    advance(progress, update, measured.residual, 0);
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::measure_iterate(NewtonProgress &progress, NewtonMeasure &measured)
+  {
+    if (!inadmissible_state.empty())
+      {
+        pcout << "  Newton: " << inadmissible_state << "\n";
+        return false;
+      }
+    measured.residual = residual_norm();
+    if (!std::isfinite(measured.residual))
+      {
+        pcout << "  Newton: the residual is not finite\n";
+        return false;
+      }
+    measured.scaled  = scaled_residual().largest();
+    measured.measure = solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled
+                           ? measured.scaled
+                           : measured.residual;
+    if (progress.iteration == 0)
+      progress.first_measure = measured.measure;
+    if (output_parameters.log_newton)
+      log_iterate(progress.iteration);
+    measured.tolerance =
+        solver_parameters.newton_tolerance *
+        (solver_parameters.newton_criterion == Parameters::ResidualCriterion::relative
+             ? progress.first_measure
+             : 1.);
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::newton_direction(const StepStatistics          &stats,
+                                        NewtonProgress                &progress,
+                                        const NewtonMeasure           &measured,
+                                        TrilinosWrappers::MPI::Vector &update)
+  {
+    return may_iterate(stats, progress, measured) && solve_for_update(progress, update);
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::may_iterate(const StepStatistics &stats,
+                                   const NewtonProgress &progress,
+                                   const NewtonMeasure  &measured)
+  {
+    const unsigned int iteration = progress.iteration;
+    if (iteration == solver_parameters.newton_max_iterations)
+      {
+        pcout << "  Newton: residual " << measured.residual << " N (" << measured.measure
+              << " against the criterion's tolerance " << measured.tolerance << ") after "
+              << iteration << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+        return false;
+      }
+    if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
+      {
+        pcout << "  Newton: " << stats.newton_iterations + iteration
+              << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
+                 "per load step)\n";
+        return false;
+      }
+    // nothing in contact and a rigid motion free: the system is singular,
+    // and no smaller load step makes it less so
+    if (!free_rigid_motions.empty() && points_in_contact() == 0)
+      {
+        unrecoverable_failure =
+            "the body is not supported: no contact point is in contact (the loads pull it off "
+            "the obstacle) and the Dirichlet conditions leave " +
+            free_rigid_motions +
+            " free. Hold it by a prescribed displacement, or load it towards the obstacle";
+        pcout << "  Newton: " << unrecoverable_failure << ".\n";
+        return false;
+      }
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::solve_for_update(NewtonProgress                &progress,
+                                        TrilinosWrappers::MPI::Vector &update)
+  {
+    if (progress.statuses_folded)
+      progress.watch.seen.push_back(point_statuses());
+    if (!progress.jacobian_current)
+      assemble_newton_system(true);
+    update.reinit(locally_owned, mpi_communicator);
+    system_rhs *= -1.;
+    bool solved;
+    {
+      TimerOutput::Scope scope(timer, "linear solve");
+      solved = direct_solver->solve(system_matrix, update, system_rhs);
+    }
+    ++work.newton_iterations;
+    if (!direct_solver->last_retry().empty())
+      pcout << "  Newton: " << direct_solver->last_retry() << "\n";
+    if (!solved)
+      {
+        const std::string &error = direct_solver->last_error();
+        pcout << "  Newton: the linear solver failed: " << error << ".\n";
+        // a smaller load step has the same matrix size and structure
+        if (error.find("memory") != std::string::npos ||
+            error.find("work space") != std::string::npos)
+          unrecoverable_failure = "the linear solver failed: " + error;
+        if (error.find("singular") != std::string::npos)
+          pcout << "  The Newton system is singular. Usual "
+                   "causes: a rigid-body motion the boundary conditions leave free; a sticking "
+                   "contact point whose tangential displacement is prescribed (a Dirichlet "
+                   "condition on a node of the contact boundary, with friction: its friction "
+                   "multiplier is then undetermined, and `Linear solver/Null pivot detection "
+                   "= true` picks one of the equivalent values); a pair that violates the "
+                   "inf-sup condition (Q1/P2).\n";
+        return false;
+      }
+    newton_constraints.distribute(update);
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::advance(NewtonProgress                      &progress,
+                               const TrilinosWrappers::MPI::Vector &update,
+                               const double                         residual,
+                               const unsigned int                   max_halvings)
+  {
+    line_search(
+        update, residual, progress.previous_residual, max_halvings, progress.watch_if_folded());
+    progress.previous_residual = residual;
+    progress.jacobian_current  = false;
+    ++progress.iteration;
   }
 
   template <int dim>
@@ -267,6 +332,18 @@ namespace StabilizedLagrangian
   template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                  \
   template bool                       ContactProblem<dim>::newton_loop(                       \
       StepStatistics &, unsigned int, unsigned int, unsigned int);      \
+  template bool ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);      \
+  template bool ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);      \
+  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                 \
+                                                      NewtonProgress &,                       \
+                                                      const NewtonMeasure &,                  \
+                                                      TrilinosWrappers::MPI::Vector &);       \
+  template bool ContactProblem<dim>::may_iterate(                                             \
+      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                 \
+  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                       \
+                                                      TrilinosWrappers::MPI::Vector &);       \
+  template void ContactProblem<dim>::advance(                                                 \
+      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);         \
   template void ContactProblem<dim>::line_search(                                             \
       const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *); \
   template void ContactProblem<dim>::log_iterate(unsigned int) const;                         \

@@ -30,6 +30,7 @@
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
+#include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
 
 #include <algorithm>
@@ -311,14 +312,6 @@ namespace StabilizedLagrangian
       std::vector<double>         m_coefficients;
     };
 
-    /** Where the load stepping stands: what a checkpoint keeps of it. */
-    struct StepController
-    {
-      unsigned int step             = 0;  ///< converged load steps
-      double       step_size        = 0.; ///< of the next attempt
-      unsigned int consecutive_cuts = 0;
-    };
-
     // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
     /**
      * The whole load path on the current mesh, from rest, or with @p resumed
@@ -326,6 +319,70 @@ namespace StabilizedLagrangian
      */
     bool
     solve_load_path(const bool resumed = false);
+    /**
+     * What a load step changes and a step cut restores, saved before each
+     * attempt. The material history needs no copy: an attempt writes only its
+     * trial values, which become the committed ones when the step converges
+     * (Materials::QuadratureHistory::commit()).
+     */
+    struct StepSnapshot
+    {
+      TrilinosWrappers::MPI::Vector       solution;
+      std::vector<ContactPointState<dim>> contact_states;
+      std::vector<ContactFace>            contact_faces;
+      double                              time = 0.;
+      /** Copy the state of @p problem. */
+      void
+      save(const ContactProblem &problem);
+      /** Put the saved state back into @p problem (collective: the ghosts are refreshed). */
+      void
+      restore(ContactProblem &problem) const;
+    };
+    /** What the log and run_summary.csv gather along the load path. */
+    struct PathLog
+    {
+      PathLog(const double start_time, const WorkCounters &work)
+          : start_time(start_time)
+          , at_step_start(work)
+      {
+      }
+      Timer        wall_clock;
+      double       start_time;
+      WorkCounters at_step_start;
+      /** the most contact points in contact in any step, and their number */
+      unsigned int most_points_in_contact = 0, contact_point_count = 0;
+      /** steps whose state breaks the friction law (the first few are named) */
+      unsigned int friction_law_warnings = 0;
+    };
+    /** Open the output of a load path from rest; the next step is the nominal one. */
+    void
+    start_load_path(LoadStepController &steps);
+    /** The sizes of the problem and the loops that run once or are folded into Newton. */
+    void
+    print_path_banner() const;
+    /**
+     * After a failed attempt (the state restored): cut the step and return
+     * true, or report why the path stops and return false.
+     */
+    bool
+    cut_load_step(LoadStepController &steps);
+    /** Commit a converged step: its statistics, output and log line. */
+    void
+    record_load_step(StepStatistics &stats, PathLog &path, const Timer &step_clock);
+    /**
+     * Warn of a slow pace after the first step; at `Load stepping/Wall time
+     * limit`, checkpoint (unless @p checkpointed), report and return true.
+     */
+    bool
+    stop_at_wall_time_limit(const LoadStepController &steps,
+                            const PathLog            &path,
+                            const bool                checkpointed);
+    /** The totals of a completed load path, in the log and run_summary.csv. */
+    void
+    finish_load_path(const LoadStepController &steps, const PathLog &path);
+    /** The work done since the load path began, failed attempts included. */
+    WorkCounters
+    work_on_path() const;
     void
     apply_dirichlet_values(const double time);
     void
@@ -392,6 +449,75 @@ namespace StabilizedLagrangian
       bool
       settling(ContactProblem<dim> &problem);
     };
+    /** What a Newton loop carries from one iteration to the next. */
+    struct NewtonProgress
+    {
+      explicit NewtonProgress(const bool statuses_folded)
+          : statuses_folded(statuses_folded)
+      {
+      }
+      /** The watch of the active set, when Newton decides the statuses. */
+      ActiveSetWatch *
+      watch_if_folded()
+      {
+        return statuses_folded ? &watch : nullptr;
+      }
+      unsigned int iteration         = 0;
+      double       first_measure     = 0.; ///< the criterion's measure at iteration 0
+      double       previous_residual = std::numeric_limits<double>::infinity();
+      /** whether the last assembly, at the iterate, has the Jacobian */
+      bool           jacobian_current = true;
+      const bool     statuses_folded;
+      ActiveSetWatch watch;
+    };
+    /** The residual at a Newton iterate as the stopping criterion measures it. */
+    struct NewtonMeasure
+    {
+      double residual  = 0.; ///< in N
+      double scaled    = 0.; ///< the largest scaled block
+      double measure   = 0.; ///< what the criterion compares with the tolerance
+      double tolerance = 0.;
+    };
+    /**
+     * The tangent predictor, the first Newton iteration of a load step whose
+     * Dirichlet increment Δū is non-zero (doc/formulation.md, "Stopping
+     * criteria"): the residual linearised at u + Δū, R(u) + K Δū, is solved
+     * for, and the step, Δū included, is taken whole.
+     */
+    bool
+    predictor_step(StepStatistics &stats, NewtonProgress &progress);
+    /**
+     * The residual of the last assembly, measured (and logged); false, with
+     * the reason printed, when the iterate cannot go on.
+     */
+    bool
+    measure_iterate(NewtonProgress &progress, NewtonMeasure &measured);
+    /**
+     * The Newton update at the iterate; false, with the reason printed, at an
+     * iteration limit, an unsupported body or a failed linear solve.
+     */
+    bool
+    newton_direction(const StepStatistics          &stats,
+                     NewtonProgress                &progress,
+                     const NewtonMeasure           &measured,
+                     TrilinosWrappers::MPI::Vector &update);
+    /** Whether the Newton loop may take another iteration (its limits, a supported body). */
+    bool
+    may_iterate(const StepStatistics &stats,
+                const NewtonProgress &progress,
+                const NewtonMeasure  &measured);
+    /** Assemble the Jacobian if needed and solve the Newton system for @p update. */
+    bool
+    solve_for_update(NewtonProgress &progress, TrilinosWrappers::MPI::Vector &update);
+    /**
+     * Move the iterate along @p update (line search with at most
+     * @p max_halvings) and count the iteration.
+     */
+    void
+    advance(NewtonProgress                      &progress,
+            const TrilinosWrappers::MPI::Vector &update,
+            const double                         residual,
+            const unsigned int                   max_halvings);
     /**
      * Backtracking along @p update from the current iterate (residual
      * @p residual, the one before @p previous_residual); with @p watch, a
@@ -808,9 +934,12 @@ namespace StabilizedLagrangian
     std::string free_rigid_motions;
     /** |g_n| at most this counts as touching in the status test (round-off of the coordinates) */
     double touching_gap = 0.;
-    /** relevant: the Dirichlet increment of the load step, until the predictor solve uses it */
+    /** relevant: the Dirichlet increment Δū of the load step (apply_dirichlet_values()) */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
-    bool                          dirichlet_predictor = false;
+    /** whether Δū is non-zero: the step's first Newton iteration is then predictor_step() */
+    bool dirichlet_increment_nonzero = false;
+    /** set by predictor_step() around its assembly alone: add_to_global_system() adds K Δū */
+    bool dirichlet_predictor = false;
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
@@ -825,8 +954,9 @@ namespace StabilizedLagrangian
     std::string                                 parameters_used;
     std::vector<std::pair<double, std::string>> pvd_records;
     StatisticsWriter                            statistics;
-    StepController                              controller;
-    unsigned int                                cycle = 0; ///< adaptive refinement cycle
+    /** where the load stepping stands (LoadStepController works on it; a checkpoint keeps it) */
+    LoadStepController::State controller;
+    unsigned int              cycle = 0; ///< adaptive refinement cycle
     std::string  run_directory;   ///< `Output directory` (the cycles write into subdirectories)
     WorkCounters path_start_work; ///< work when the load path began
     /** per adaptive refinement cycle, the cells this rank flagged for refinement */
