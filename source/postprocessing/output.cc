@@ -20,6 +20,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -138,55 +139,102 @@ namespace StabilizedLagrangian
         }
   }
 
+  /**
+   * One contact output field: a Q1 field of the VTU, averaged at the vertices
+   * of Γc, and columns of the profile, at every node of Γc; both evaluated
+   * from the converged iterate at a point (doc/formulation.md).
+   */
+  template <int dim> struct ContactProblem<dim>::ContactField
+  {
+    /** What a field is evaluated from at a point. */
+    struct Sample
+    {
+      const ContactPointState<dim>          &state;
+      const ContactKinematics<dim>          &kinematics;
+      const Contact::PointResponse<dim - 1> &response; ///< the point-wise stabilized Lagrangian
+      double                                 gap;      ///< g_n with the point's pairing
+    };
+
+    std::string  name;       ///< of the VTU field
+    std::string  column;     ///< the profile's columns are column[_x|_y|_z][_unit]
+    std::string  unit;       ///< empty for a number without unit
+    unsigned int components; ///< 1 (a scalar) or dim (a vector)
+    /** append the field's components at a point to the values */
+    std::function<void(const Sample &, std::vector<double> &)> evaluate;
+  };
+
+  template <int dim>
+  std::vector<typename ContactProblem<dim>::ContactField>
+  ContactProblem<dim>::contact_fields()
+  {
+    using Sample = typename ContactField::Sample;
+    using Values = std::vector<double>;
+    // a tangential vector in the pairing's basis, in Cartesian components
+    const auto append = [](const Sample &p, const Tensor<1, dim - 1> &t, Values &values) {
+      const Tensor<1, dim> v = p.state.pairing.from_tangential_components(t);
+      for (unsigned int d = 0; d < dim; ++d)
+        values.push_back(v[d]);
+    };
+    return {
+        {"contact_pressure",
+         "contact_pressure",
+         "MPa",
+         1,
+         [](const Sample &p, Values &values) { values.push_back(p.response.normal_traction()); }},
+        {"tangential_traction",
+         "tangential_traction",
+         "MPa",
+         dim,
+         [append](const Sample &p, Values &values) {
+           append(p, p.response.tangential_traction(), values);
+         }},
+        {"gap", "gap", "mm", 1, [](const Sample &p, Values &values) { values.push_back(p.gap); }},
+        {"slip_increment",
+         "slip_increment",
+         "mm",
+         dim,
+         [append](const Sample &p, Values &values) {
+           append(p, p.state.pairing.tangential_components(p.kinematics.step_increment), values);
+         }},
+        {"contact_status", "status", "", 1, [](const Sample &p, Values &values) {
+           values.push_back(static_cast<double>(p.response.status()));
+         }}};
+  }
+
+  template <int dim>
+  std::vector<double>
+  ContactProblem<dim>::contact_field_values(const std::vector<ContactField> &fields,
+                                            ContactKinematics<dim>           k) const
+  {
+    // the state of the converged iterate, evaluated afresh at the point
+    ContactPointState<dim> state;
+    evaluate_point_state(state, k, PointRefresh{true, true, true});
+    const double        gap   = state.pairing.gap(k.position);
+    const auto          point = point_response(state, k);
+    std::vector<double> values;
+    for (const auto &field : fields)
+      field.evaluate({state, k, point, gap}, values);
+    return values;
+  }
+
   template <int dim>
   void
-  ContactProblem<dim>::output_results(const unsigned int step, const double t)
+  ContactProblem<dim>::sample_contact_fields(const std::vector<ContactField> &fields,
+                                             const DoFHandler<dim>           &field_dofs,
+                                             TrilinosWrappers::MPI::Vector   &vertex_values,
+                                             std::vector<double>             &profile) const
   {
-    TimerOutput::Scope scope(timer, "output");
-    const std::string &directory = output_parameters.directory;
-    const bool         root      = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-
-    // Contact fields at the vertices of Γc, on a Q1 field (zero elsewhere):
-    // pressure, tangential traction (dim), gap, slip increment (dim), status.
-    const unsigned int  n_fields = 2 * dim + 3;
-    const FESystem<dim> fe_fields(FE_Q<dim>(1), n_fields);
-    DoFHandler<dim>     field_dofs(triangulation);
-    field_dofs.distribute_dofs(fe_fields);
     IndexSet field_relevant;
     DoFTools::extract_locally_relevant_dofs(field_dofs, field_relevant);
     TrilinosWrappers::MPI::Vector sums;
     sums.reinit(field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator, true);
     TrilinosWrappers::MPI::Vector counts(sums);
-
-    // the state of the converged iterate, evaluated afresh at a point:
-    // pressure, tangential traction, gap, slip increment, status
-    partner->update_configuration(ghosted_solution);
-    const auto point_values = [&](ContactKinematics<dim> k) {
-      ContactPointState<dim> state;
-      evaluate_point_state(state, k, PointRefresh{true, true, true});
-      const double gap   = state.pairing.gap(k.position);
-      const auto   point = point_response(state, k);
-
-      std::vector<double> values;
-      values.push_back(point.normal_traction());
-      const Tensor<1, dim> traction =
-          state.pairing.from_tangential_components(point.tangential_traction());
-      const Tensor<1, dim> slip = state.pairing.from_tangential_components(
-          state.pairing.tangential_components(k.step_increment));
-      for (unsigned int d = 0; d < dim; ++d)
-        values.push_back(traction[d]);
-      values.push_back(gap);
-      for (unsigned int d = 0; d < dim; ++d)
-        values.push_back(slip[d]);
-      values.push_back(static_cast<double>(point.status()));
-      return values;
-    };
+    const unsigned int            n_components = field_dofs.get_fe().n_components();
 
     // One pass over the nodes of the contact faces (Gauss-Lobatto points of
     // the larger of the two degrees: the vertices for Q1/P1, also the
     // midsides for quadratic pairs): every node goes into the profile, in
     // reference coordinates; the vertices also into the vertex fields.
-    std::vector<double>          profile;
     const QGaussLobatto<dim - 1> node_quadrature(
         std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
     FaceEvaluator evaluator(*this, node_quadrature, false);
@@ -199,14 +247,15 @@ namespace StabilizedLagrangian
         const double tolerance   = 1e-10 * vertex_face->diameter();
         for (unsigned int q = 0; q < node_quadrature.size(); ++q)
           {
-            const Point<dim>         &X      = evaluator.u_values->quadrature_point(q);
-            const std::vector<double> values = point_values(evaluator.kinematics(q));
+            const Point<dim>         &X = evaluator.u_values->quadrature_point(q);
+            const std::vector<double> values =
+                contact_field_values(fields, evaluator.kinematics(q));
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
             profile.insert(profile.end(), values.begin(), values.end());
             for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_face; ++v)
               if (vertex_face->vertex(v).distance(X) < tolerance)
-                for (unsigned int c = 0; c < n_fields; ++c)
+                for (unsigned int c = 0; c < n_components; ++c)
                   {
                     const auto index = vertex_face->vertex_dof_index(v, c);
                     sums(index) += values[c];
@@ -216,127 +265,169 @@ namespace StabilizedLagrangian
       }
     sums.compress(VectorOperation::add);
     counts.compress(VectorOperation::add);
-    TrilinosWrappers::MPI::Vector fields(field_dofs.locally_owned_dofs(), mpi_communicator);
+    vertex_values.reinit(field_dofs.locally_owned_dofs(), mpi_communicator);
     for (const auto index : field_dofs.locally_owned_dofs())
-      fields(index) = counts(index) > 0. ? sums(index) / counts(index) : 0.;
-    fields.compress(VectorOperation::insert);
+      vertex_values(index) = counts(index) > 0. ? sums(index) / counts(index) : 0.;
+    vertex_values.compress(VectorOperation::insert);
+  }
 
+  template <int dim>
+  void
+  ContactProblem<dim>::output_results(const unsigned int step, const double t)
+  {
+    TimerOutput::Scope              scope(timer, "output");
+    const std::vector<ContactField> fields       = contact_fields();
+    unsigned int                    n_components = 0;
+    for (const auto &field : fields)
+      n_components += field.components;
+    // the contact fields at the vertices of Γc, on a Q1 field (zero elsewhere)
+    const FESystem<dim> fe_fields(FE_Q<dim>(1), n_components);
+    DoFHandler<dim>     field_dofs(triangulation);
+    field_dofs.distribute_dofs(fe_fields);
+    partner->update_configuration(ghosted_solution);
+    TrilinosWrappers::MPI::Vector vertex_values;
+    std::vector<double>           profile;
+    sample_contact_fields(fields, field_dofs, vertex_values, profile);
     if (output_parameters.write_vtu)
-      {
-        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
-        TrilinosWrappers::MPI::Vector       fields_ghosted(
-            field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
-        fields_ghosted = fields;
-
-        DataOut<dim>                                                                data_out;
-        const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_kind(
-            dim, DataComponentInterpretation::component_is_part_of_vector);
-        data_out.add_data_vector(
-            dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
-        std::vector<Tensor<2, 3>>  cell_stress;
-        std::vector<Vector<float>> cell_history_fields;
-        compute_cell_averages(u, cell_stress, cell_history_fields);
-        const CellStressPostprocessor<dim> stress(cell_stress);
-        data_out.add_data_vector(dof_handler_u, u, stress);
-        const std::vector<std::string> history_names = history_field_names();
-        for (unsigned int f = 0; f < history_names.size(); ++f)
-          data_out.add_data_vector(cell_history_fields[f], history_names[f]);
-
-        std::vector<std::string> names = {"contact_pressure"};
-        std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds = {
-            DataComponentInterpretation::component_is_scalar};
-        const auto add_vector = [&](const std::string &name) {
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              names.push_back(name);
-              kinds.push_back(DataComponentInterpretation::component_is_part_of_vector);
-            }
-        };
-        add_vector("tangential_traction");
-        names.push_back("gap");
-        kinds.push_back(DataComponentInterpretation::component_is_scalar);
-        add_vector("slip_increment");
-        names.push_back("contact_status");
-        kinds.push_back(DataComponentInterpretation::component_is_scalar);
-        data_out.add_data_vector(field_dofs, fields_ghosted, names, kinds);
-
-        Vector<float> subdomain(triangulation.n_active_cells());
-        for (auto &value : subdomain)
-          value = triangulation.locally_owned_subdomain();
-        data_out.add_data_vector(subdomain, "subdomain");
-        data_out.build_patches(fe_pair->displacement_degree());
-        std::string record;
-        try
-          {
-            record = data_out.write_vtu_with_pvtu_record(
-                directory + "/", "solution", step, mpi_communicator, 5, 0);
-          }
-        catch (const std::exception &)
-          {
-            const int error = errno;
-            // no half-written piece of this step is left behind
-            const std::string stem = "solution_" + Utilities::int_to_string(step, 5);
-            if (root)
-              for (const auto &entry : std::filesystem::directory_iterator(directory))
-                if (entry.path().filename().string().rfind(stem, 0) == 0)
-                  std::filesystem::remove(entry.path());
-            throw std::runtime_error(
-                "cannot write the solution of step " + std::to_string(step) + " (" + stem +
-                ".pvtu) into " + directory + ": " + SafeFiles::free_space_note(directory) +
-                (error != 0 ? std::string(" (the system says: ") + std::strerror(error) + ")"
-                            : std::string()));
-          }
-        // the .pvd lists a step only once every rank's piece is complete
-        MPI_Barrier(mpi_communicator);
-        pvd_records.emplace_back(t, record);
-        write_pvd();
-      }
-
+      write_solution(step, t, fields, field_dofs, vertex_values);
     if (output_parameters.write_profiles && step > 0)
+      write_profile(step, fields, profile);
+  }
+
+  namespace
+  {
+    /**
+     * Remove what a failed write of the solution of @p step left in
+     * @p directory (on rank 0) and say why it failed.
+     */
+    std::runtime_error
+    solution_write_error(const std::string &directory, const unsigned int step, const bool root)
+    {
+      const int error = errno;
+      // no half-written piece of this step is left behind
+      const std::string stem = "solution_" + Utilities::int_to_string(step, 5);
+      if (root)
+        for (const auto &entry : std::filesystem::directory_iterator(directory))
+          if (entry.path().filename().string().rfind(stem, 0) == 0)
+            std::filesystem::remove(entry.path());
+      return std::runtime_error(
+          "cannot write the solution of step " + std::to_string(step) + " (" + stem +
+          ".pvtu) into " + directory + ": " + SafeFiles::free_space_note(directory) +
+          (error != 0 ? std::string(" (the system says: ") + std::strerror(error) + ")"
+                      : std::string()));
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_solution(const unsigned int                   step,
+                                      const double                         t,
+                                      const std::vector<ContactField>     &fields,
+                                      const DoFHandler<dim>               &field_dofs,
+                                      const TrilinosWrappers::MPI::Vector &vertex_values)
+  {
+    const std::string                  &directory = output_parameters.directory;
+    const TrilinosWrappers::MPI::Vector u         = ghosted_displacement();
+    IndexSet                            field_relevant;
+    DoFTools::extract_locally_relevant_dofs(field_dofs, field_relevant);
+    TrilinosWrappers::MPI::Vector vertex_ghosted(
+        field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
+    vertex_ghosted = vertex_values;
+
+    DataOut<dim>                                                                data_out;
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_kind(
+        dim, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(
+        dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
+    std::vector<Tensor<2, 3>>  cell_stress;
+    std::vector<Vector<float>> cell_history_fields;
+    compute_cell_averages(u, cell_stress, cell_history_fields);
+    const CellStressPostprocessor<dim> stress(cell_stress);
+    data_out.add_data_vector(dof_handler_u, u, stress);
+    const std::vector<std::string> history_names = history_field_names();
+    for (unsigned int f = 0; f < history_names.size(); ++f)
+      data_out.add_data_vector(cell_history_fields[f], history_names[f]);
+
+    std::vector<std::string>                                              names;
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds;
+    for (const auto &field : fields)
+      for (unsigned int c = 0; c < field.components; ++c)
+        {
+          names.push_back(field.name);
+          kinds.push_back(field.components == 1
+                              ? DataComponentInterpretation::component_is_scalar
+                              : DataComponentInterpretation::component_is_part_of_vector);
+        }
+    data_out.add_data_vector(field_dofs, vertex_ghosted, names, kinds);
+
+    Vector<float> subdomain(triangulation.n_active_cells());
+    for (auto &value : subdomain)
+      value = triangulation.locally_owned_subdomain();
+    data_out.add_data_vector(subdomain, "subdomain");
+    data_out.build_patches(fe_pair->displacement_degree());
+    std::string record;
+    try
       {
-        const auto gathered = Utilities::MPI::gather(mpi_communicator, profile, 0);
-        if (root)
-          {
-            // one row per node: faces sharing a node give it once (coordinates
-            // rounded to 1e-9 mm identify it)
-            const unsigned int                                 row_size = dim + n_fields;
-            std::map<std::vector<double>, std::vector<double>> rows;
-            for (const auto &part : gathered)
-              for (unsigned int r = 0; r + row_size <= part.size(); r += row_size)
-                {
-                  std::vector<double> key(part.begin() + r, part.begin() + r + dim);
-                  for (double &x : key)
-                    x = std::round(x * 1e9) / 1e9;
-                  rows[key] = std::vector<double>(part.begin() + r, part.begin() + r + row_size);
-                }
-            std::vector<std::vector<double>> sorted;
-            for (auto &entry : rows)
-              sorted.push_back(entry.second);
-            std::sort(sorted.begin(), sorted.end());
-            std::ostringstream name;
-            name << directory << "/profile-" << std::setw(5) << std::setfill('0') << step << ".csv";
-            std::ostringstream file;
-            const char        *axes[] = {"x_mm", "y_mm", "z_mm"};
-            for (unsigned int d = 0; d < dim; ++d)
-              file << axes[d] << ',';
-            file << "contact_pressure_MPa";
-            for (unsigned int d = 0; d < dim; ++d)
-              file << ",tangential_traction_"
-                   << "xyz"[d] << "_MPa";
-            file << ",gap_mm";
-            for (unsigned int d = 0; d < dim; ++d)
-              file << ",slip_increment_"
-                   << "xyz"[d] << "_mm";
-            file << ",status\n" << std::setprecision(15);
-            for (const auto &row : sorted)
-              {
-                for (unsigned int c = 0; c < row.size(); ++c)
-                  file << (c ? "," : "") << row[c];
-                file << '\n';
-              }
-            SafeFiles::write_atomically(name.str(), file.str());
-          }
+        record = data_out.write_vtu_with_pvtu_record(
+            directory + "/", "solution", step, mpi_communicator, 5, 0);
       }
+    catch (const std::exception &)
+      {
+        throw solution_write_error(
+            directory, step, Utilities::MPI::this_mpi_process(mpi_communicator) == 0);
+      }
+    // the .pvd lists a step only once every rank's piece is complete
+    MPI_Barrier(mpi_communicator);
+    pvd_records.emplace_back(t, record);
+    write_pvd();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_profile(const unsigned int               step,
+                                     const std::vector<ContactField> &fields,
+                                     const std::vector<double>       &profile) const
+  {
+    const auto gathered = Utilities::MPI::gather(mpi_communicator, profile, 0);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::vector<std::string> columns;
+    for (unsigned int d = 0; d < dim; ++d)
+      columns.push_back(std::string(1, "xyz"[d]) + "_mm");
+    for (const auto &field : fields)
+      for (unsigned int c = 0; c < field.components; ++c)
+        columns.push_back(field.column + (field.components > 1 ? std::string("_") + "xyz"[c] : "") +
+                          (field.unit.empty() ? "" : "_" + field.unit));
+    // one row per node: faces sharing a node give it once (coordinates
+    // rounded to 1e-9 mm identify it)
+    const unsigned int                                 row_size = columns.size();
+    std::map<std::vector<double>, std::vector<double>> rows;
+    for (const auto &part : gathered)
+      for (unsigned int r = 0; r + row_size <= part.size(); r += row_size)
+        {
+          std::vector<double> key(part.begin() + r, part.begin() + r + dim);
+          for (double &x : key)
+            x = std::round(x * 1e9) / 1e9;
+          rows[key] = std::vector<double>(part.begin() + r, part.begin() + r + row_size);
+        }
+    std::vector<std::vector<double>> sorted;
+    for (auto &entry : rows)
+      sorted.push_back(entry.second);
+    std::sort(sorted.begin(), sorted.end());
+    std::ostringstream name;
+    name << output_parameters.directory << "/profile-" << std::setw(5) << std::setfill('0') << step
+         << ".csv";
+    std::ostringstream file;
+    for (unsigned int c = 0; c < columns.size(); ++c)
+      file << (c ? "," : "") << columns[c];
+    file << '\n' << std::setprecision(15);
+    for (const auto &row : sorted)
+      {
+        for (unsigned int c = 0; c < row.size(); ++c)
+          file << (c ? "," : "") << row[c];
+        file << '\n';
+      }
+    SafeFiles::write_atomically(name.str(), file.str());
   }
 
   namespace

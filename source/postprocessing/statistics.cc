@@ -2,31 +2,138 @@
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
 namespace StabilizedLagrangian
 {
+  namespace
+  {
+    /** What one row of statistics.csv is written from. */
+    struct StepRow
+    {
+      const StepStatistics &record;
+      unsigned int          cumulative_newton; ///< with this step's
+    };
+
+    /** What one row of iterations.csv is written from. */
+    struct LoopRow
+    {
+      const InnerLoopRecord &record;
+      unsigned int           step;
+    };
+
+    /** One column of a CSV file: its header and how a row writes its value. */
+    template <typename Row> struct Column
+    {
+      std::string                                      name;
+      std::function<void(std::ostream &, const Row &)> write;
+    };
+
+    /** The column @p name showing @p member of the row's record with @p precision digits. */
+    template <typename Row, typename Member>
+    Column<Row>
+    member_column(const std::string &name, const Member member, const int precision)
+    {
+      return {name, [member, precision](std::ostream &out, const Row &row) {
+                out << std::setprecision(precision) << row.record.*member;
+              }};
+    }
+
+    /** The columns of statistics.csv, in their order (a new statistic is one entry). */
+    std::vector<Column<StepRow>>
+    statistics_columns(const unsigned int dim)
+    {
+      const auto field = [](const std::string &name, const auto member, const int precision = 10) {
+        return member_column<StepRow>(name, member, precision);
+      };
+      using S                              = StepStatistics;
+      std::vector<Column<StepRow>> columns = {
+          field("step", &S::step),
+          field("time", &S::time),
+          field("step_size", &S::step_size),
+          field("step_cuts", &S::cuts),
+          field("geometry_iterations", &S::geometry_iterations),
+          field("friction_iterations", &S::friction_iterations),
+          field("status_iterations", &S::status_iterations),
+          field("newton_iterations", &S::newton_iterations),
+          {"cumulative_newton_iterations",
+           [](std::ostream &out, const StepRow &row) { out << row.cumulative_newton; }},
+          field("failed_attempt_newton_iterations", &S::failed_newton_iterations),
+          field("assemblies", &S::assemblies),
+          field("jacobian_assemblies", &S::jacobians),
+          field("final_residual_N", &S::final_residual),
+          field("final_scaled_residual", &S::final_scaled),
+          field("contact_points", &S::contact_points),
+          field("points_in_contact", &S::points_in_contact),
+          field("points_stick", &S::points_stick),
+          field("points_slip", &S::points_slip),
+          field("normal_force_N", &S::normal_force),
+          field("tangential_force_N", &S::tangential_force)};
+      for (unsigned int d = 0; d < dim; ++d)
+        columns.push_back({std::string("contact_force_") + "xyz"[d] + "_N",
+                           [d](std::ostream &out, const StepRow &row) {
+                             out << std::setprecision(10) << row.record.contact_force[d];
+                           }});
+      columns.push_back(field("folded_loops", &S::folded_loops));
+      columns.push_back(field("friction_law_violations", &S::friction_law_violations));
+      columns.push_back(field("wall_time_s", &S::wall_time, 4));
+      return columns;
+    }
+
+    /** The columns of iterations.csv, in their order. */
+    std::vector<Column<LoopRow>>
+    iterations_columns()
+    {
+      const auto field = [](const std::string &name, const auto member) {
+        return member_column<LoopRow>(name, member, 6);
+      };
+      using R = InnerLoopRecord;
+      return {{"step", [](std::ostream &out, const LoopRow &row) { out << row.step; }},
+              field("geometry_iteration", &R::geometry_iteration),
+              field("friction_iteration", &R::friction_iteration),
+              field("status_iteration", &R::status_iteration),
+              field("newton_iterations", &R::newton_iterations),
+              field("residual_N", &R::residual),
+              field("scaled_residual", &R::scaled),
+              field("status_changes", &R::status_changes)};
+    }
+
+    /** The header line of @p columns. */
+    template <typename Row>
+    std::string
+    header(const std::vector<Column<Row>> &columns)
+    {
+      std::string line;
+      for (const auto &column : columns)
+        line += (line.empty() ? "" : ",") + column.name;
+      return line + '\n';
+    }
+
+    /** Append the line of @p row to @p out. */
+    template <typename Row>
+    void
+    write_line(std::ostream &out, const std::vector<Column<Row>> &columns, const Row &row)
+    {
+      for (unsigned int c = 0; c < columns.size(); ++c)
+        {
+          if (c > 0)
+            out << ',';
+          columns[c].write(out, row);
+        }
+      out << '\n';
+    }
+  } // namespace
+
   void
   StatisticsWriter::open(const std::string &directory, const unsigned int dim, const bool is_root)
   {
     resume(directory, dim, is_root, State());
     if (!root)
       return;
-    std::ostringstream header;
-    header << "step,time,step_size,step_cuts,geometry_iterations,friction_iterations,"
-              "status_iterations,newton_iterations,cumulative_newton_iterations,"
-              "failed_attempt_newton_iterations,assemblies,jacobian_assemblies,"
-              "final_residual_N,final_scaled_residual,contact_points,points_in_contact,"
-              "points_stick,points_slip,normal_force_N,tangential_force_N,contact_force_x_N,"
-              "contact_force_y_N";
-    if (dim == 3)
-      header << ",contact_force_z_N";
-    header << ",folded_loops,friction_law_violations,wall_time_s\n";
-    SafeFiles::write_atomically(statistics_path, header.str());
-    SafeFiles::write_atomically(iterations_path,
-                                "step,geometry_iteration,friction_iteration,status_iteration,"
-                                "newton_iterations,residual_N,scaled_residual,status_changes\n");
+    SafeFiles::write_atomically(statistics_path, header(statistics_columns(dim)));
+    SafeFiles::write_atomically(iterations_path, header(iterations_columns()));
   }
 
   void
@@ -70,22 +177,11 @@ namespace StabilizedLagrangian
     if (!root)
       return;
     std::ostringstream row;
-    row << std::setprecision(10) << s.step << ',' << s.time << ',' << s.step_size << ',' << s.cuts
-        << ',' << s.geometry_iterations << ',' << s.friction_iterations << ','
-        << s.status_iterations << ',' << s.newton_iterations << ',' << cumulative_newton << ','
-        << s.failed_newton_iterations << ',' << s.assemblies << ',' << s.jacobians << ','
-        << s.final_residual << ',' << s.final_scaled << ',' << s.contact_points << ','
-        << s.points_in_contact << ',' << s.points_stick << ',' << s.points_slip << ','
-        << s.normal_force << ',' << s.tangential_force;
-    for (unsigned int d = 0; d < dimension; ++d)
-      row << ',' << s.contact_force[d];
-    row << ',' << s.folded_loops << ',' << s.friction_law_violations << ',' << std::setprecision(4)
-        << s.wall_time << '\n';
-    std::ostringstream rows;
+    write_line(row, statistics_columns(dimension), StepRow{s, cumulative_newton});
+    std::ostringstream                 rows;
+    const std::vector<Column<LoopRow>> columns = iterations_columns();
     for (const auto &r : s.inner_loops)
-      rows << s.step << ',' << r.geometry_iteration << ',' << r.friction_iteration << ','
-           << r.status_iteration << ',' << r.newton_iterations << ',' << std::setprecision(6)
-           << r.residual << ',' << r.scaled << ',' << r.status_changes << '\n';
+      write_line(rows, columns, LoopRow{r, s.step});
     // the iterations first: a statistics row always has its inner loops
     SafeFiles::append(iterations_path, rows.str());
     SafeFiles::append(statistics_path, row.str());

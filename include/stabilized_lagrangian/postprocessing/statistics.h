@@ -23,7 +23,8 @@ namespace StabilizedLagrangian
 
   /**
    * @brief Statistics of one load step (one row of statistics.csv; doc/formulation.md,
-   * "Nested loops").
+   * "Nested loops"). A statistic is a member here and its column in the table
+   * of statistics.cc, which writes both the header and the rows.
    */
   struct StepStatistics
   {

@@ -831,6 +831,39 @@ namespace StabilizedLagrangian
     void
     output_results(const unsigned int step, const double time);
     /**
+     * One contact output field: its VTU name, its profile columns and its
+     * evaluation at a point of Γc (a field is one entry of contact_fields()).
+     */
+    struct ContactField;
+    /** The contact output fields, in the order of the VTU's and the profile's. */
+    static std::vector<ContactField>
+    contact_fields();
+    /** The values of @p fields at a point of Γc, from the converged iterate evaluated afresh. */
+    std::vector<double>
+    contact_field_values(const std::vector<ContactField> &fields, ContactKinematics<dim> k) const;
+    /**
+     * Evaluate @p fields at the nodes of Γc: averaged at the vertices into
+     * @p vertex_values (a Q1 field of @p field_dofs), each node's reference
+     * coordinates and values appended to @p profile.
+     */
+    void
+    sample_contact_fields(const std::vector<ContactField> &fields,
+                          const DoFHandler<dim>           &field_dofs,
+                          TrilinosWrappers::MPI::Vector   &vertex_values,
+                          std::vector<double>             &profile) const;
+    /** Write the VTU of @p step with the contact fields, and list it in solution.pvd. */
+    void
+    write_solution(const unsigned int                   step,
+                   const double                         time,
+                   const std::vector<ContactField>     &fields,
+                   const DoFHandler<dim>               &field_dofs,
+                   const TrilinosWrappers::MPI::Vector &vertex_values);
+    /** Write profile-<step>.csv: one row per node of Γc (rank 0, from every rank's @p profile). */
+    void
+    write_profile(const unsigned int               step,
+                  const std::vector<ContactField> &fields,
+                  const std::vector<double>       &profile) const;
+    /**
      * Create the output directory and remove what an earlier run wrote there
      * (the files this program writes: solution, profiles, statistics, cycles,
      * checkpoints), after the input was read; an error names the entry.
