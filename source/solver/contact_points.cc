@@ -1,11 +1,14 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 
 namespace StabilizedLagrangian
 {
@@ -20,9 +23,10 @@ namespace StabilizedLagrangian
         for (const unsigned int f : cell->face_indices())
           if (is_contact_face(cell, f))
             {
-              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr});
+              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr, nullptr});
               n_points += contact_quadrature.size();
             }
+    set_consistent_nodal_weights();
     contact_states.assign(n_points, ContactPointState<dim>());
     if (!friction_law->threshold_depends_on_pressure())
       for (auto &state : contact_states)
@@ -35,6 +39,55 @@ namespace StabilizedLagrangian
     update_statuses();
     if (!free_rigid_motions.empty() && points_in_contact() == 0)
       close_nearest_points();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::set_consistent_nodal_weights()
+  {
+    // With nodal quadrature the multiplier coupling is diagonal, ∫ψ_a f ≈ w_a f(x_a),
+    // and the nodal λ_a balances the nodal force F_a = w_a λ_a. A uniform
+    // pressure p has the consistent nodal forces p ∫_F ℓ_a dΓ, so λ_a = p only
+    // if w_a = ∫_F ℓ_a dΓ. The Gauss–Lobatto weight times the Jacobian at the
+    // node is that integral where the Jacobian is constant (a straight edge, a
+    // parallelogram face), not elsewhere (a distorted hexahedron's face).
+    if (contact_parameters.quadrature != Parameters::ContactQuadrature::gauss_lobatto)
+      return;
+    const unsigned int n_1d =
+        static_cast<unsigned int>(std::lround(std::pow(contact_quadrature.size(), 1. / (dim - 1))));
+    const QGaussLobatto<1> nodes_1d(n_1d);
+    const auto lagrange = Polynomials::generate_complete_Lagrange_basis(nodes_1d.get_points());
+    // ℓ_q(ξ) = Π_d L_{q_d}(ξ_d) at the points of a Gauss rule exact for ℓ_q J on plane faces
+    const QGauss<dim - 1> gauss(n_1d + 1);
+    FullMatrix<double>    shape(contact_quadrature.size(), gauss.size());
+    for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+      for (unsigned int g = 0; g < gauss.size(); ++g)
+        {
+          shape(q, g) = 1.;
+          for (unsigned int d = 0; d < dim - 1; ++d)
+            for (unsigned int i = 0; i < n_1d; ++i)
+              if (std::abs(nodes_1d.point(i)[0] - contact_quadrature.point(q)[d]) < 1e-12)
+                shape(q, g) *= lagrange[i].value(gauss.point(g)[d]);
+        }
+    FEFaceValues<dim> gauss_values(*fe_u, gauss, update_JxW_values);
+    FEFaceValues<dim> nodal_values(*fe_u, contact_quadrature, update_JxW_values);
+    for (auto &face : contact_faces)
+      {
+        gauss_values.reinit(face.cell, face.face_no);
+        nodal_values.reinit(face.cell, face.face_no);
+        std::vector<double> weights(contact_quadrature.size(), 0.);
+        double              difference = 0., smallest = std::numeric_limits<double>::max();
+        for (unsigned int q = 0; q < weights.size(); ++q)
+          {
+            for (unsigned int g = 0; g < gauss.size(); ++g)
+              weights[q] += shape(q, g) * gauss_values.JxW(g);
+            difference = std::max(difference, std::abs(weights[q] - nodal_values.JxW(q)));
+            smallest   = std::min(smallest, weights[q]);
+          }
+        // (a face so distorted that a weight is not positive keeps the lumped ones)
+        if (difference > 1e-12 * face.cell->face(face.face_no)->measure() && smallest > 0.)
+          face.nodal_weights = std::make_shared<const std::vector<double>>(weights);
+      }
   }
 
   template <int dim>
@@ -78,6 +131,7 @@ namespace StabilizedLagrangian
         u_start.resize(rule.size());
       }
     u_values->reinit(face.cell, face.face_no);
+    weights           = follow_segments ? face.nodal_weights.get() : nullptr;
     const auto m_cell = problem.multiplier_cell(face.cell);
     m_values->reinit(m_cell, face.face_no);
     face.cell->get_dof_indices(u_dofs);
@@ -119,7 +173,7 @@ namespace StabilizedLagrangian
     k.displacement   = u_now[q];
     k.step_increment = u_now[q] - u_start[q];
     k.position       = u_values->quadrature_point(q) + u_now[q];
-    k.JxW            = u_values->JxW(q);
+    k.JxW            = weights ? (*weights)[q] : u_values->JxW(q);
     for (unsigned int a = 0; a < m_local.size(); ++a)
       {
         const unsigned int c   = problem.fe_m->system_to_component_index(m_local[a]).first;
@@ -185,7 +239,7 @@ namespace StabilizedLagrangian
                                [](const double a, const double b) { return b - a < 1e-8; }),
                    cuts.end());
         ContactFace cut_face{
-            face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr};
+            face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr, nullptr};
         if (cuts.size() > 2)
           {
             std::vector<Point<dim - 1>> points;
@@ -206,7 +260,8 @@ namespace StabilizedLagrangian
           same = old_rule.point(q).distance(new_rule.point(q)) < 1e-12;
         if (same)
           {
-            cut_face.segments = face.segments;
+            cut_face.segments      = face.segments;
+            cut_face.nodal_weights = face.nodal_weights;
             states.insert(states.end(),
                           contact_states.begin() + face.first_point,
                           contact_states.begin() + face.first_point + old_rule.size());
@@ -283,6 +338,7 @@ namespace StabilizedLagrangian
 #define SL_INSTANTIATE(dim)                                                            \
   template void ContactProblem<dim>::setup_contact_points();                           \
   template bool ContactProblem<dim>::finite_strain() const;                            \
+  template void ContactProblem<dim>::set_consistent_nodal_weights();                   \
   template class ContactProblem<dim>::FaceEvaluator;                                   \
   template void                            ContactProblem<dim>::update_pairings(bool); \
   template bool                            ContactProblem<dim>::update_segments();     \

@@ -202,7 +202,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::solve_for_update(NewtonProgress                &progress,
                                         TrilinosWrappers::MPI::Vector &update)
   {
-    if (progress.statuses_folded)
+    if (progress.newton_decides_statuses)
       progress.watch.seen.push_back(point_statuses());
     if (!progress.jacobian_current)
       assemble_newton_system(true);
@@ -246,7 +246,7 @@ namespace StabilizedLagrangian
                                const unsigned int                   max_halvings)
   {
     line_search(
-        update, residual, progress.previous_residual, max_halvings, progress.watch_if_folded());
+        update, residual, progress.previous_residual, max_halvings, progress.active_set_watch());
     progress.previous_residual = residual;
     progress.jacobian_current  = false;
     ++progress.iteration;

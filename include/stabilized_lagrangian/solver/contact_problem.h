@@ -261,6 +261,14 @@ namespace StabilizedLagrangian
        * integrated exactly; null: `contact_quadrature` on the whole face.
        */
       std::shared_ptr<const Quadrature<dim - 1>> segments;
+      /**
+       * With the nodal (Gauss–Lobatto) contact quadrature on a face whose
+       * Jacobian is not constant (not a parallelogram): the consistent weights
+       * W_q = ∫_F ℓ_q dΓ of its points (ℓ_q the Lagrange polynomial of point q),
+       * which replace the lumped weights w_q J(ξ_q) (doc/formulation.md,
+       * "Contact quadrature"); null elsewhere, where both agree.
+       */
+      std::shared_ptr<const std::vector<double>> nodal_weights;
     };
     /** The contact points of @p face. */
     const Quadrature<dim - 1> &
@@ -277,8 +285,10 @@ namespace StabilizedLagrangian
     {
     public:
       /**
-       * With @p follow_segments, a face with its own quadrature (ContactFace::segments)
-       * is evaluated at its points, else at those of @p quadrature.
+       * With @p follow_segments (the contact quadrature), a face with its own
+       * quadrature (ContactFace::segments) is evaluated at its points, else at
+       * those of @p quadrature, and its consistent nodal weights
+       * (ContactFace::nodal_weights) are the points' JxW.
        */
       FaceEvaluator(const ContactProblem      &problem,
                     const Quadrature<dim - 1> &quadrature,
@@ -307,7 +317,9 @@ namespace StabilizedLagrangian
       const Quadrature<dim - 1> quadrature;
       const bool                follow_segments;
       /** the quadrature u_values and m_values were built for (null: `quadrature`) */
-      const Quadrature<dim - 1>  *current = nullptr;
+      const Quadrature<dim - 1> *current = nullptr;
+      /** the consistent nodal weights of the face of the last reinit(), if any */
+      const std::vector<double>  *weights = nullptr;
       std::vector<Tensor<1, dim>> u_now, u_start;
       std::vector<double>         m_coefficients;
     };
@@ -452,22 +464,22 @@ namespace StabilizedLagrangian
     /** What a Newton loop carries from one iteration to the next. */
     struct NewtonProgress
     {
-      explicit NewtonProgress(const bool statuses_folded)
-          : statuses_folded(statuses_folded)
+      explicit NewtonProgress(const bool newton_decides_statuses)
+          : newton_decides_statuses(newton_decides_statuses)
       {
       }
       /** The watch of the active set, when Newton decides the statuses. */
       ActiveSetWatch *
-      watch_if_folded()
+      active_set_watch()
       {
-        return statuses_folded ? &watch : nullptr;
+        return newton_decides_statuses ? &watch : nullptr;
       }
       unsigned int iteration         = 0;
       double       first_measure     = 0.; ///< the criterion's measure at iteration 0
       double       previous_residual = std::numeric_limits<double>::infinity();
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
-      const bool     statuses_folded;
+      const bool     newton_decides_statuses;
       ActiveSetWatch watch;
     };
     /** The residual at a Newton iterate as the stopping criterion measures it. */
@@ -712,6 +724,9 @@ namespace StabilizedLagrangian
     // --- contact_points.cc: pairing, segments, kinematics, statuses, thresholds ---
     void
     setup_contact_points();
+    /** The consistent nodal weights of the contact faces (ContactFace::nodal_weights). */
+    void
+    set_consistent_nodal_weights();
     /** Whether any material is finite strain. */
     bool
     finite_strain() const;
