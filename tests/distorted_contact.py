@@ -86,63 +86,13 @@ def distorted_block(dim, n, seed):
 
 
 def scene(dim, mesh, pair, quadrature):
-    load = "0; -p*t" if dim == 2 else "0; 0; -p*t"
-    held = """  subsection Dirichlet 2
-    set Boundary id = y min
-    set Components = y
-  end
-""" if dim == 3 else ""
-    return f"""set Dimension = {dim}
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {mesh}
-  end
-end
-subsection Obstacle
-  subsection plane
-    set Point = {"0, 0" if dim == 2 else "0, 0, 0"}
-    set Normal = {"0, 1" if dim == 2 else "0, 0, 1"}
-  end
-end
-subsection Material
-  subsection linear elastic
-    set Young's modulus = 200000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = bottom
-  set Finite element pair = {pair}
-  set Contact quadrature = {quadrature}
-  subsection Friction law
-    subsection Coulomb
-      set Friction coefficient = 0
-    end
-  end
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    set Boundary id = x min
-    set Components = x
-  end
-{held}  subsection Neumann 1
-    set Boundary id = top
-    subsection Traction
-      set Function constants = p={pressure}
-      set Function expression = {load}
-      set Variable names = {"x,y,t" if dim == 2 else "x,y,z,t"}
-    end
-  end
-end
-subsection Load stepping
-  set Number of load steps = 1
-end
-subsection Output
-  set Output directory = output
-  set Write vtu = false
-end
-"""
+    """tests/scenes/distorted_block.prm for this mesh, pair and quadrature."""
+    return sltest.scene(
+        "distorted_block", DIM=dim, MESH=mesh, PAIR=pair, QUADRATURE=quadrature, PRESSURE=pressure,
+        POINT="0, 0" if dim == 2 else "0, 0, 0", NORMAL="0, 1" if dim == 2 else "0, 0, 1",
+        # in 3D the face y = 0 holds the motion along y too
+        HELD_Y="y min" if dim == 3 else "x min", HELD_Y_COMPONENTS="y" if dim == 3 else "x",
+        LOAD="0; -p*t" if dim == 2 else "0; 0; -p*t", VARIABLES="x,y,t" if dim == 2 else "x,y,z,t")
 
 
 os.makedirs(workdir, exist_ok=True)

@@ -109,18 +109,6 @@ namespace StabilizedLagrangian
              const TrilinosWrappers::MPI::Vector &step_start) const override;
 
       /**
-       * @brief Displacement of @p u at the reference point @p xi of face @p face.
-       */
-      Tensor<1, dim>
-      displacement(const unsigned int                   face,
-                   const Point<dim - 1>                &xi,
-                   const TrilinosWrappers::MPI::Vector &u) const;
-
-      /** @brief Reference position X(ξ) of @p xi on face @p face. */
-      Point<dim>
-      reference_point(const unsigned int face, const Point<dim - 1> &xi) const;
-
-      /**
        * @brief The displacement DoFs of face @p face and their shape values at
        * @p xi: DoF dofs[i] moves the point by values[i] e_{components[i]}.
        */
@@ -158,6 +146,17 @@ namespace StabilizedLagrangian
       }
 
     private:
+      /**
+       * @brief Displacement of @p u at the reference point @p xi of face @p face.
+       */
+      Tensor<1, dim>
+      displacement(const unsigned int                   face,
+                   const Point<dim - 1>                &xi,
+                   const TrilinosWrappers::MPI::Vector &u) const;
+
+      /** @brief Reference position X(ξ) of @p xi on face @p face. */
+      Point<dim>
+      reference_point(const unsigned int face, const Point<dim - 1> &xi) const;
       /** Current position and the derivatives ∂x/∂ξ_a at @p xi on face @p face. */
       Point<dim>
       position(const unsigned int    face,

@@ -730,6 +730,19 @@ namespace StabilizedLagrangian
     /** Whether any material is finite strain. */
     bool
     finite_strain() const;
+    /** Call f(state, kinematics) at every locally owned contact point, nothing re-evaluated. */
+    template <typename Function>
+    void
+    visit_contact_points(const Function &f)
+    {
+      FaceEvaluator evaluator(*this, contact_quadrature);
+      for (const auto &face : contact_faces)
+        {
+          evaluator.reinit(face, ghosted_solution);
+          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+            f(contact_states[face.first_point + q], evaluator.kinematics(q));
+        }
+    }
     /**
      * At every locally owned contact point, evaluate what @p what names
      * (evaluate_point_state()) and call f(before, state, kinematics) with the
@@ -739,29 +752,21 @@ namespace StabilizedLagrangian
     void
     refresh_contact_points(const PointRefresh &what, const Function &f)
     {
-      FaceEvaluator evaluator(*this, contact_quadrature);
-      for (const auto &face : contact_faces)
-        {
-          evaluator.reinit(face, ghosted_solution);
-          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-            {
-              ContactPointState<dim>      &state  = contact_states[face.first_point + q];
-              const ContactPointState<dim> before = state;
-              ContactKinematics<dim>       k      = evaluator.kinematics(q);
-              evaluate_point_state(state, k, what);
-              f(before, state, k);
-            }
-        }
+      visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
+        const ContactPointState<dim> before = state;
+        evaluate_point_state(state, k, what);
+        f(before, state, k);
+      });
     }
     /** Call f(state, kinematics) at every locally owned contact point, its state frozen. */
     template <typename Function>
     void
     for_each_contact_point(const Function &f)
     {
-      refresh_contact_points(PointRefresh(),
-                             [&](const ContactPointState<dim> &,
-                                 ContactPointState<dim>       &state,
-                                 const ContactKinematics<dim> &k) { f(state, k); });
+      visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
+        evaluate_point_state(state, k, PointRefresh());
+        f(state, k);
+      });
     }
     /**
      * The point-wise stabilized Lagrangian with the status and threshold of
