@@ -3,7 +3,8 @@
 
 Usage: contrib/benchmark_hertz_gmsh.py --executable build/stabilized_lagrangian
                                        [--baseline OLD_EXECUTABLE] [--workdir DIR]
-                                       [--jobs N] [--size-factors 1,0.7,0.5] [--doc]
+                                       [--jobs N] [--size-factors 1,0.7,0.5]
+                                       [--refinements 0] [--doc [FILE]]
 
 Runs prm/hertz_sphere_gmsh.prm (a quarter of a ball, R = 50 mm, pressed by
 P = 20 kN onto a rigid frictionless plane; Q1/P1) on three meshes of
@@ -12,6 +13,10 @@ multiplied by a factor (a variant .geo in the work directory sets
 `size_factor` and includes the shipped one), with `Contact quadrature =
 Gauss-Lobatto` (the default) and `Gauss`. With --baseline the same runs are
 made with a second executable (e.g. a build before a fix) and shown beside.
+With --refinements the meshes are also refined uniformly (e.g. `--size-factors 2
+--refinements 0,1,2`): nested meshes whose new vertices on the ball lie on the
+sphere (`Spherical boundaries` of the scene), so the observed order is that of
+the discretisation, not of the mesh generator's choices.
 
 Per run: DoFs, the normal force P (four times the quarter's), and the errors
 of the nodal contact pressure against Hertz's closed form with the run's own
@@ -36,7 +41,7 @@ E* = E/(1 - nu^2)):
          profile's edge).
 
 The per-run rows go to WORKDIR/hertz_gmsh_hexahedra.csv; with --doc the
-Markdown table goes to doc/hertz_gmsh_hexahedra.md."""
+Markdown table goes to doc/hertz_gmsh_hexahedra.md (or the FILE given)."""
 import argparse
 import concurrent.futures
 import csv
@@ -64,9 +69,17 @@ parser.add_argument("--workdir", default="/tmp/benchmark_hertz_gmsh")
 parser.add_argument("--jobs", type=int, default=1, help="runs at a time (each on one MPI rank)")
 parser.add_argument("--size-factors", default="1,0.7,0.5",
                     help="mesh size factors, coarse to fine (1: the shipped mesh)")
-parser.add_argument("--doc", action="store_true", help="write doc/hertz_gmsh_hexahedra.md")
+parser.add_argument("--refinements", default="0",
+                    help="uniform refinements of each mesh, coarse to fine (nested meshes)")
+parser.add_argument("--doc", nargs="?", const=os.path.join(ROOT, "doc", "hertz_gmsh_hexahedra.md"),
+                    help="write the Markdown table (default doc/hertz_gmsh_hexahedra.md)")
 args = parser.parse_args()
-factors = [float(f) for f in args.size_factors.split(",")]
+try:
+    meshes = [(float(f), int(n)) for f in args.size_factors.split(",") for n in args.refinements.split(",")]
+except ValueError:
+    parser.error("--size-factors takes numbers and --refinements integers, separated by commas")
+if any(f <= 0 or n < 0 for f, n in meshes):
+    parser.error("size factors must be > 0 and refinements >= 0")
 builds = [(args.label or args.executable, os.path.abspath(args.executable))]
 if args.baseline:
     builds.insert(0, (args.baseline_label, os.path.abspath(args.baseline)))
@@ -89,13 +102,15 @@ def mesh_file(factor):
     return path
 
 
-def scene(factor, quadrature):
+def scene(mesh, quadrature):
+    factor, refinements = mesh
     with open(os.path.join(ROOT, "prm", "hertz_sphere_gmsh.prm")) as f:
         text = f.read()
     return text + f"""
 subsection Geometry
   subsection gmsh
     set Mesh file = {mesh_file(factor)}
+    set Global refinements = {refinements}
   end
 end
 subsection Contact
@@ -178,20 +193,25 @@ def l2_error(profile, a_h, p0_h, subdivisions=6):
 
 # --- the runs ---------------------------------------------------------------
 
-def run(build, factor, quadrature):
+def mesh_name(mesh):
+    return f"{mesh[0]:g}" + (f" + {mesh[1]} ref." if mesh[1] else "")
+
+
+def run(build, mesh, quadrature):
     label, executable = build
-    name = f"build{[b[0] for b in builds].index(label)}-size{factor:g}-{quadrature}"
+    factor, refinements = mesh
+    name = f"build{[b[0] for b in builds].index(label)}-size{factor:g}-ref{refinements}-{quadrature}"
     directory = os.path.join(workdir, name)
     os.makedirs(directory, exist_ok=True)
     with open(os.path.join(directory, "input.prm"), "w") as f:
-        f.write(scene(factor, quadrature))
+        f.write(scene(mesh, quadrature))
     start = time.time()
     result = subprocess.run([executable, "input.prm"], cwd=directory, capture_output=True, text=True)
     elapsed = time.time() - start
     with open(os.path.join(directory, "log.txt"), "w") as f:
         f.write(result.stdout + result.stderr)
     if result.returncode != 0:
-        print(f"  {label} size {factor:g} {quadrature}: exit code {result.returncode} "
+        print(f"  {label} size {mesh_name(mesh)} {quadrature}: exit code {result.returncode} "
               f"(see {directory}/log.txt)", flush=True)
         return None
     out = os.path.join(directory, "output")
@@ -202,7 +222,7 @@ def run(build, factor, quadrature):
     a_h = (3 * P * R / (4 * E_STAR)) ** (1 / 3)
     p0_h = 3 * P / (2 * math.pi * a_h ** 2)
     pole = min(profile, key=lambda row: math.hypot(row["x_mm"], row["y_mm"]))
-    row = {"build": label, "size_factor": factor, "quadrature": quadrature,
+    row = {"build": label, "size_factor": factor, "refinements": refinements, "quadrature": quadrature,
            "dofs": int(summary["displacement_dofs"] + summary["multiplier_dofs"]),
            "newton_iterations": int(summary["newton_iterations"]), "wall_time_s": elapsed,
            "normal_force_N": P, "a_hertz_mm": a_h, "p0_hertz_MPa": p0_h,
@@ -213,17 +233,19 @@ def run(build, factor, quadrature):
            "interpolation_error": l2_error(
                [dict(r, contact_pressure_MPa=p0_h * math.sqrt(max(0.0, 1 - (r["x_mm"] ** 2 + r["y_mm"] ** 2) / a_h ** 2)))
                 for r in profile], a_h, p0_h)}
-    print(f"  {label} size {factor:g} {quadrature:13s}: {row['dofs']:7d} DoFs, {row['newton_iterations']} Newton, "
+    print(f"  {label} size {mesh_name(mesh)} {quadrature:13s}: {row['dofs']:7d} DoFs, {row['newton_iterations']} Newton, "
           f"{elapsed:.1f} s, P = {P:.0f} N, L2 {row['l2_error']:.2%}, p(0) {row['pole_error']:+.2%}, "
           f"max p {row['max_error']:+.2%}", flush=True)
     return row
 
 
-cases = [(b, f, q) for b in builds for f in factors for q in QUADRATURES]
+cases = [(b, m, q) for b in builds for m in meshes for q in QUADRATURES]
+for factor in {m[0] for m in meshes}:
+    mesh_file(factor)  # written before the runs that read it start
 start = time.time()
 with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
     # the finest meshes first, so that the runs at a time end together
-    futures = {c: pool.submit(run, *c) for c in sorted(cases, key=lambda c: c[1])}
+    futures = {c: pool.submit(run, *c) for c in sorted(cases, key=lambda c: c[1][0] / 2 ** c[1][1])}
     results = {c: futures[c].result() for c in cases}
 total = time.time() - start
 rows = [r for r in (results[c] for c in cases) if r]
@@ -254,29 +276,31 @@ if args.doc:
              "by P = 20 kN onto a rigid frictionless plane, a quarter model meshed by Gmsh "
              "(prm/meshes/hertz_quarter_ball.geo: tetrahedra each subdivided into four hexahedra, a size "
              "field graded toward the contact point; the contact faces are general quadrilaterals, not "
-             "parallelograms), Q1/P1, the whole load in one step. Three meshes, made anew with every size "
-             "multiplied by the size factor. Errors against the closed form of Hertz with the run's own "
+             "parallelograms), Q1/P1, the whole load in one step. The meshes are made anew with every size "
+             "multiplied by the size factor, then refined uniformly `ref.` times (new vertices on the "
+             "sphere: nested meshes). Errors against the closed form of Hertz with the run's own "
              "normal force (a ~ 1.5 mm, p0 ~ 4.2 GPa):", "",
              "- L2: relative L2 error of the nodal pressure interpolated linearly over the contact surface "
              "within r <= 1.5 a; rate: its order in h ~ DoFs^(-1/3);",
              "- interp: the same measure for the exact pressure at the same nodes, i.e. the error of the "
              "linear interpolation of the square-root profile alone: the floor of the L2 measure on that "
              "mesh, which decreases like h (the profile's edge);",
+             "  with nested meshes h halves from one to the next and the rate is log2 of the ratio;",
              "- p(0): signed error of the pressure at the centre of the contact against p0;",
              "- max p: signed error of the largest nodal pressure against p0.", "",
              "Both contact quadratures are those of doc/formulation.md (`Contact quadrature`: "
              "Gauss-Lobatto, the default, and Gauss).", ""]
     for label, executable in builds:
         lines += [f"## {label}", "",
-                  "| size factor | DoFs | interp | Gauss-Lobatto: L2 | rate | p(0) | max p "
+                  "| mesh | DoFs | interp | Gauss-Lobatto: L2 | rate | p(0) | max p "
                   "| Gauss: L2 | rate | p(0) | max p |",
                   "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
         previous = {q: None for q in QUADRATURES}
-        for factor in factors:
-            gl, g = (results[((label, executable), factor, q)] for q in QUADRATURES)
+        for mesh in meshes:
+            gl, g = (results[((label, executable), mesh, q)] for q in QUADRATURES)
             dofs = (gl or g or {}).get("dofs", "")
             interp = f"{(gl or g)['interpolation_error']:.3f}" if (gl or g) else ""
-            lines.append(f"| {factor:g} | {dofs} | {interp} | " + " | ".join(cells(gl, previous[QUADRATURES[0]]) +
+            lines.append(f"| {mesh_name(mesh)} | {dofs} | {interp} | " + " | ".join(cells(gl, previous[QUADRATURES[0]]) +
                                                                  cells(g, previous[QUADRATURES[1]])) + " |")
             previous = {QUADRATURES[0]: gl, QUADRATURES[1]: g}
         times = [r["wall_time_s"] for r in rows if r["build"] == label]
@@ -287,6 +311,6 @@ if args.doc:
                   f"wall time per run {min(times, default=0):.0f}-{max(times, default=0):.0f} s.", ""]
     lines += [f"Generated by `{command}` ({len(rows)} runs, {args.jobs} at a time, one MPI rank each, "
               f"2-core machine: {total / 60:.1f} min).", ""]
-    with open(os.path.join(ROOT, "doc", "hertz_gmsh_hexahedra.md"), "w") as f:
+    with open(args.doc, "w") as f:
         f.write("\n".join(lines))
-    print("wrote doc/hertz_gmsh_hexahedra.md")
+    print(f"wrote {args.doc}")

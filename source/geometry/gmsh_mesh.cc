@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
 #include <stabilized_lagrangian/geometry/scene.h>
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -425,6 +427,16 @@ namespace StabilizedLagrangian
                           "the working directory, then beside the parameter file.");
         prm.declare_entry(
             "Global refinements", "0", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry(
+            "Spherical boundaries",
+            "",
+            Patterns::Anything(),
+            "Boundaries that lie on a sphere (3D) or a circle (2D), as `boundary: centre` "
+            "separated by `;` (e.g. `contact: 0, 0, 50; master: 0, -100`), the boundary by "
+            "its physical group's name or id. Refinement places the new vertices of these "
+            "faces on the sphere, so a refined mesh converges to the curved surface "
+            "instead of keeping the facets of the coarse one. The boundary's vertices must "
+            "be equidistant from the centre (to 1e-6 of the radius).");
         prm.declare_entry("Meshing time limit",
                           "300",
                           Patterns::Double(1.),
@@ -463,12 +475,21 @@ namespace StabilizedLagrangian
         read_mesh(msh_file);
         if (msh_file != file)
           std::filesystem::remove(msh_file);
+        read_spherical_boundaries(prm.get("Spherical boundaries"));
       }
 
       void
       create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
       {
         triangulation.copy_triangulation(coarse);
+        // manifold id k + 1 for the k-th sphere (0 would be the cells' default flat one)
+        for (unsigned int k = 0; k < spheres.size(); ++k)
+          {
+            for (const auto &face : triangulation.active_face_iterators())
+              if (face->at_boundary() && face->boundary_id() == spheres[k].first)
+                face->set_all_manifold_ids(k + 1);
+            triangulation.set_manifold(k + 1, SphericalManifold<dim>(spheres[k].second));
+          }
         triangulation.refine_global(refinements);
       }
 
@@ -515,11 +536,87 @@ namespace StabilizedLagrangian
                              "hexahedra (Recombine in Gmsh).");
       }
 
-      const std::string                         file;
-      const unsigned int                        refinements;
-      Triangulation<dim>                        coarse;
-      std::map<std::string, types::boundary_id> boundaries;
-      std::map<std::string, types::material_id> bodies;
+      /**
+       * Parse `Spherical boundaries` and check that each boundary's vertices
+       * are on one sphere around its centre: a wrong centre would move the
+       * refined vertices off the body's surface and distort the cells.
+       */
+      void
+      read_spherical_boundaries(const std::string &text)
+      {
+        const std::string entry = "Geometry/gmsh/Spherical boundaries";
+        for (const std::string &item : Utilities::split_string_list(text, ';'))
+          {
+            const auto colon = item.find(':');
+            if (colon == std::string::npos)
+              throw InputError(entry + ": '" + item +
+                               "' is not `boundary: centre` (e.g. `contact: 0, 0, 50`).");
+            const std::string name        = Utilities::trim(item.substr(0, colon));
+            const auto        coordinates = Utilities::split_string_list(item.substr(colon + 1));
+            Point<dim>        center;
+            try
+              {
+                AssertThrow(coordinates.size() == dim, ExcMessage(""));
+                for (unsigned int d = 0; d < dim; ++d)
+                  center[d] = Utilities::string_to_double(coordinates[d]);
+              }
+            catch (...)
+              {
+                throw InputError(entry + ": the centre of '" + name + "' must be " +
+                                 std::to_string(dim) + " numbers separated by commas, not '" +
+                                 Utilities::trim(item.substr(colon + 1)) + "'.");
+              }
+            spheres.emplace_back(boundary_id(entry, name), center);
+            check_on_sphere(entry, name, spheres.back());
+          }
+      }
+
+      /** The boundary id of a physical group's name or id. */
+      types::boundary_id
+      boundary_id(const std::string &entry, const std::string &name) const
+      {
+        if (const auto named = boundaries.find(name); named != boundaries.end())
+          return named->second;
+        std::string known;
+        for (const auto &[group, id] : boundaries)
+          {
+            known += (known.empty() ? "" : ", ") + group;
+            if (name == std::to_string(id))
+              return id;
+          }
+        throw InputError(entry + ": '" + file + "' has no boundary '" + name +
+                         "'; its boundaries: " + (known.empty() ? "none" : known) + ".");
+      }
+
+      void
+      check_on_sphere(const std::string                               &entry,
+                      const std::string                               &name,
+                      const std::pair<types::boundary_id, Point<dim>> &sphere) const
+      {
+        double smallest = std::numeric_limits<double>::max(), largest = 0.;
+        for (const auto &face : coarse.active_face_iterators())
+          if (face->at_boundary() && face->boundary_id() == sphere.first)
+            for (const unsigned int v : face->vertex_indices())
+              {
+                const double distance = face->vertex(v).distance(sphere.second);
+                smallest              = std::min(smallest, distance);
+                largest               = std::max(largest, distance);
+              }
+        if (largest == 0.)
+          throw InputError(entry + ": the boundary '" + name + "' has no face in '" + file + "'.");
+        if (largest - smallest > 1e-6 * largest)
+          throw InputError(entry + ": the vertices of the boundary '" + name +
+                           "' are not on one sphere around the given centre: their distances "
+                           "to it range from " +
+                           std::to_string(smallest) + " to " + std::to_string(largest) + " mm.");
+      }
+
+      const std::string                                      file;
+      const unsigned int                                     refinements;
+      Triangulation<dim>                                     coarse;
+      std::vector<std::pair<types::boundary_id, Point<dim>>> spheres;
+      std::map<std::string, types::boundary_id>              boundaries;
+      std::map<std::string, types::material_id>              bodies;
     };
 
     SL_REGISTER_PLUGIN(
