@@ -14,6 +14,7 @@
 #include <fstream>
 #include <optional>
 #include <regex>
+#include <map>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -581,15 +582,27 @@ namespace StabilizedLagrangian
           "refinement_cycles.csv sums them up.");
       prm.declare_entry("Criterion",
                         "active set",
-                        Patterns::Selection("active set|Kelly"),
+                        Patterns::Selection("active set|Kelly|estimator|uniform"),
                         "active set: refine the cells near the points in contact (below); "
                         "Kelly: refine the `Refined fraction` of the cells with the largest "
                         "Kelly indicators (jumps of the displacement gradient across faces), "
-                        "which also follows the stresses below the contact zone.");
+                        "which also follows the stresses below the contact zone; estimator: "
+                        "the `Refined fraction` with the largest residual error indicators "
+                        "eta_K of the last load step (the field error_indicator, with the "
+                        "contact terms; doc/formulation.md, \"Error estimate\"); uniform: "
+                        "every cell (nested meshes, for convergence studies).");
       prm.declare_entry("Refined fraction",
                         "0.3",
                         Patterns::Double(0., 1.),
-                        "Kelly: fraction of the cells refined at each cycle.");
+                        "Kelly, estimator: fraction of the cells refined at each cycle.");
+      prm.declare_entry("Errors against the last cycle",
+                        "false",
+                        Patterns::Bool(),
+                        "Carry every cycle's displacement through the refinements (exactly: "
+                        "the meshes are nested) and measure it against the last cycle's in "
+                        "the energy norm of the last state's tangent; cycle_errors.csv gives "
+                        "it beside the error estimate of that cycle and their ratio (the "
+                        "effectivity index against this reference). Not with --resume.");
       prm.declare_entry("Refinement band",
                         "0.5",
                         Patterns::Double(0.),
@@ -603,10 +616,15 @@ namespace StabilizedLagrangian
     AdaptiveRefinement::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptive refinement");
-      cycles    = prm.get_integer("Cycles");
-      criterion = prm.get("Criterion") == "Kelly" ? Criterion::kelly : Criterion::active_set;
-      band      = prm.get_double("Refinement band");
-      fraction  = prm.get_double("Refined fraction");
+      cycles                                          = prm.get_integer("Cycles");
+      const std::map<std::string, Criterion> criteria = {{"active set", Criterion::active_set},
+                                                         {"Kelly", Criterion::kelly},
+                                                         {"estimator", Criterion::estimator},
+                                                         {"uniform", Criterion::uniform}};
+      criterion                                       = criteria.at(prm.get("Criterion"));
+      errors_against_last_cycle = prm.get_bool("Errors against the last cycle");
+      band                      = prm.get_double("Refinement band");
+      fraction                  = prm.get_double("Refined fraction");
       prm.leave_subsection();
     }
 

@@ -223,12 +223,16 @@ namespace StabilizedLagrangian
       enum class Criterion
       {
         active_set, ///< refine a band around the points in contact
-        kelly       ///< refine the cells with the largest Kelly error indicators
+        kelly,      ///< refine the cells with the largest Kelly error indicators
+        estimator,  ///< refine the cells with the largest residual error indicators η_K
+        uniform     ///< refine every cell
       };
       unsigned int cycles    = 0; ///< solves on refined meshes after the first one
       Criterion    criterion = Criterion::active_set;
       double       band      = 0.5; ///< width of the refined band, in active-zone sizes
-      double       fraction  = 0.3; ///< Kelly: fraction of the cells refined
+      double       fraction  = 0.3; ///< Kelly, estimator: fraction of the cells refined
+      /** measure each cycle's displacement against the last cycle's (cycle_errors.csv) */
+      bool errors_against_last_cycle = false;
 
       static void
       declare_parameters(ParameterHandler &prm);

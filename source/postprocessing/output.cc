@@ -364,6 +364,10 @@ namespace StabilizedLagrangian
     for (auto &value : subdomain)
       value = triangulation.locally_owned_subdomain();
     data_out.add_data_vector(subdomain, "subdomain");
+    // η_K of the residual error estimate (√(N mm)); zero before the first step
+    if (error_indicators.size() != triangulation.n_active_cells())
+      error_indicators.reinit(triangulation.n_active_cells());
+    data_out.add_data_vector(error_indicators, "error_indicator_sqrtNmm");
     data_out.build_patches(fe_pair->displacement_degree());
     std::string record;
     try

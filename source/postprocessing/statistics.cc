@@ -78,6 +78,12 @@ namespace StabilizedLagrangian
                            }});
       columns.push_back(field("folded_loops", &S::folded_loops));
       columns.push_back(field("friction_law_violations", &S::friction_law_violations));
+      columns.push_back(field("estimated_error_sqrtNmm", &S::estimated_error, 6));
+      columns.push_back(field("estimated_contact_error_sqrtNmm", &S::estimated_contact_error, 6));
+      columns.push_back(field("energy_norm_sqrtNmm", &S::energy_norm, 10));
+      columns.push_back({"estimated_relative_error", [](std::ostream &out, const StepRow &row) {
+                           out << std::setprecision(6) << row.record.relative_error();
+                         }});
       columns.push_back(field("wall_time_s", &S::wall_time, 4));
       return columns;
     }

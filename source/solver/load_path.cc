@@ -32,6 +32,10 @@ namespace StabilizedLagrangian
     if (!resume)
       prepare_output_directory();
     const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
+    // the estimate of the restored (converged) state, which the cycle's row
+    // and the summary report if the checkpoint ended the cycle's load path
+    if (resume)
+      estimate_error(last_step);
     if (root)
       SafeFiles::write_atomically(final_directory + "/parameters.prm", parameters_used);
 
@@ -43,7 +47,14 @@ namespace StabilizedLagrangian
     if (root && n_cycles > 0 && !resume)
       SafeFiles::write_atomically(cycles_path,
                                   "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
-                                  "normal_force_N,wall_time_s\n");
+                                  "normal_force_N,estimated_error_sqrtNmm,estimated_relative_error,"
+                                  "wall_time_s\n");
+    const bool measure_cycles =
+        adaptive_refinement.errors_against_last_cycle && n_cycles > 0 && !resume;
+    if (adaptive_refinement.errors_against_last_cycle && resume)
+      pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
+               "on a resumed run (the earlier cycles' displacements are not in the "
+               "checkpoint).\n";
     for (cycle = first_cycle; cycle <= n_cycles; ++cycle)
       {
         const bool resumed = resume && cycle == first_cycle;
@@ -51,7 +62,6 @@ namespace StabilizedLagrangian
           {
             TimerOutput::Scope scope(timer, "setup");
             refine_mesh();
-            setup_after_refinement();
             time = 0.;
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
           }
@@ -65,13 +75,20 @@ namespace StabilizedLagrangian
             std::ostringstream row;
             row << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
                 << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
-                << std::setprecision(10) << last_normal_force << ',' << cycle_clock.wall_time()
-                << '\n';
+                << std::setprecision(10) << last_normal_force << ',' << last_step.estimated_error
+                << ',' << last_step.relative_error() << ',' << cycle_clock.wall_time() << '\n';
             SafeFiles::append(cycles_path, row.str());
           }
         if (!converged)
           return false;
+        if (measure_cycles)
+          {
+            earlier_cycles.push_back(ghosted_displacement());
+            cycle_records.emplace_back(n_u, last_step.estimated_error);
+          }
       }
+    if (measure_cycles)
+      write_cycle_errors(final_directory);
     return true;
   }
 
@@ -239,6 +256,8 @@ namespace StabilizedLagrangian
       TimerOutput::Scope scope(timer, "contact search");
       compute_contact_statistics(stats);
     }
+    estimate_error(stats);
+    last_step                   = stats;
     last_normal_force           = stats.normal_force;
     path.most_points_in_contact = std::max(path.most_points_in_contact, stats.points_in_contact);
     path.contact_point_count    = stats.contact_points;
@@ -300,14 +319,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::finish_load_path(const LoadStepController &steps, const PathLog &path)
   {
-    std::ostringstream mean;
-    mean << std::fixed << std::setprecision(2)
-         << static_cast<double>(statistics.cumulative_newton_iterations()) / steps.step();
-    pcout << "Total Newton iterations: " << statistics.cumulative_newton_iterations()
-          << ", mean per load step: " << mean.str()
-          << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
-          << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
-          << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n";
+    print_run_summary(steps.step(), path.wall_clock.wall_time());
     // a scene that runs but cannot be what was meant: the contact surface is
     // not the one that touches the obstacle, or the obstacle faces away
     if (path.most_points_in_contact <= 1 && path.contact_point_count > 1)
@@ -319,6 +331,55 @@ namespace StabilizedLagrangian
     if (verbose)
       timer.print_wall_time_statistics(mpi_communicator);
     write_run_summary(steps.step(), path.wall_clock.wall_time(), work_on_path());
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::peak_memory() const
+  {
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    return Utilities::MPI::max(memory.VmHWM / 1024., mpi_communicator);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::print_run_summary(const unsigned int n_steps, const double wall_time) const
+  {
+    // the slowest rank's time per phase, as in run_summary.csv
+    std::map<std::string, double> sections;
+    for (const auto &[section, seconds] : timer.get_summary_data(TimerOutput::total_wall_time))
+      sections[section] = Utilities::MPI::max(seconds, mpi_communicator);
+    const double       memory = peak_memory();
+    std::ostringstream block;
+    block << std::fixed << std::setprecision(2) << "Run summary\n"
+          << "  mesh:       " << triangulation.n_global_active_cells() << " cells, " << n_u
+          << " displacement + " << n_multipliers << " multiplier DoFs, "
+          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s)\n"
+          << "  load path:  " << n_steps
+          << " load step(s); Total Newton iterations: " << statistics.cumulative_newton_iterations()
+          << ", mean per load step: "
+          << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps
+          << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
+          << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
+          << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n"
+          << "  wall time:  " << std::setprecision(1) << wall_time << " s";
+    std::string separator = ": ";
+    for (const auto &[section, seconds] : sections)
+      {
+        block << separator << section << ' ' << seconds << " s ("
+              << static_cast<int>(std::round(100. * seconds / std::max(wall_time, 1e-300)))
+              << " %)";
+        separator = ", ";
+      }
+    block << "\n  memory:     peak " << static_cast<long>(std::round(memory))
+          << " MiB resident on the largest rank\n"
+          << "  error:      estimated " << std::scientific << std::setprecision(2)
+          << last_step.estimated_error << " sqrt(N mm) in the energy norm, " << std::fixed
+          << 100. * last_step.relative_error() << " % of the solution's (contact part "
+          << std::scientific << last_step.estimated_contact_error
+          << "; doc/formulation.md, \"Error estimate\")\n";
+    pcout << block.str();
   }
 
   template <int dim>
@@ -339,15 +400,18 @@ namespace StabilizedLagrangian
     // the slowest rank's time per phase
     const std::map<std::string, double> times =
         timer.get_summary_data(TimerOutput::total_wall_time);
+    const double                  memory = peak_memory(); // collective
     std::map<std::string, double> slowest;
     for (const auto &[section, seconds] : times)
       slowest[section] = Utilities::MPI::max(seconds, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
-    file << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
-            "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
-            "assemblies,jacobian_assemblies,wall_time_s";
+    file
+        << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
+           "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
+           "assemblies,jacobian_assemblies,estimated_error_sqrtNmm,estimated_contact_error_sqrtNmm,"
+           "estimated_relative_error,peak_memory_MiB,wall_time_s";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
@@ -357,7 +421,9 @@ namespace StabilizedLagrangian
          << statistics.cumulative_newton_iterations() << ','
          << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
          << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
-         << path_work.jacobians << ',' << wall_time;
+         << path_work.jacobians << ',' << last_step.estimated_error << ','
+         << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
+         << ',' << wall_time;
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';
@@ -427,6 +493,8 @@ namespace StabilizedLagrangian
   template void         ContactProblem<dim>::finish_load_path(const LoadStepController &,          \
                                                       const PathLog &);                    \
   template WorkCounters ContactProblem<dim>::work_on_path() const;                                 \
+  template double       ContactProblem<dim>::peak_memory() const;                                  \
+  template void         ContactProblem<dim>::print_run_summary(unsigned int, double) const;        \
   template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
       const;                                                                                       \
   template void ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;        \

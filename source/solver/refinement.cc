@@ -5,18 +5,26 @@
 #include <deal.II/lac/vector.h>
 
 #include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/rtree.h>
 
 #include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace StabilizedLagrangian
 {
@@ -85,17 +93,34 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::refine_mesh()
   {
-    if (adaptive_refinement.criterion == Parameters::AdaptiveRefinement::Criterion::active_set)
-      refine_around_active_set();
-    else
+    using Criterion = Parameters::AdaptiveRefinement::Criterion;
+    switch (adaptive_refinement.criterion)
       {
-        // Kelly indicators of the displacement of the last converged state
-        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
-        Vector<float>                       indicators(triangulation.n_active_cells());
-        KellyErrorEstimator<dim>::estimate(
-            dof_handler_u, QGauss<dim - 1>(fe_pair->displacement_degree() + 1), {}, u, indicators);
+      case Criterion::active_set:
+        refine_around_active_set();
+        break;
+      case Criterion::uniform:
+        flag_every_cell();
+        break;
+      case Criterion::kelly:
+        {
+          // Kelly indicators of the displacement of the last converged state
+          const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+          Vector<float>                       indicators(triangulation.n_active_cells());
+          KellyErrorEstimator<dim>::estimate(dof_handler_u,
+                                             QGauss<dim - 1>(fe_pair->displacement_degree() + 1),
+                                             {},
+                                             u,
+                                             indicators);
+          parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+              triangulation, indicators, adaptive_refinement.fraction, 0.);
+          break;
+        }
+      case Criterion::estimator:
+        // η_K of the last converged load step (estimate_error())
         parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-            triangulation, indicators, adaptive_refinement.fraction, 0.);
+            triangulation, error_indicators, adaptive_refinement.fraction, 0.);
+        break;
       }
     // the mesh the flags make (with the smoothing's own flags), against the
     // memory of the machine: a refinement that cannot fit is not started
@@ -112,7 +137,95 @@ namespace StabilizedLagrangian
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && cell->refine_flag_set())
         refinement_history.back().push_back(cell->id());
+    // the displacements of the earlier cycles follow the mesh (`Errors against
+    // the last cycle`): the meshes are nested, so the interpolation is exact
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer(
+        dof_handler_u);
+    std::vector<const TrilinosWrappers::MPI::Vector *> carried;
+    for (const auto &u : earlier_cycles)
+      carried.push_back(&u);
+    if (!carried.empty())
+      transfer.prepare_for_coarsening_and_refinement(carried);
     triangulation.execute_coarsening_and_refinement();
+    setup_after_refinement();
+    if (carried.empty())
+      return;
+    std::vector<TrilinosWrappers::MPI::Vector> owned(
+        carried.size(), TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
+    std::vector<TrilinosWrappers::MPI::Vector *> targets;
+    for (auto &u : owned)
+      targets.push_back(&u);
+    transfer.interpolate(targets);
+    AffineConstraints<double> hanging_nodes(locally_relevant_u);
+    DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_nodes);
+    hanging_nodes.close();
+    for (unsigned int k = 0; k < owned.size(); ++k)
+      {
+        hanging_nodes.distribute(owned[k]);
+        earlier_cycles[k].reinit(locally_owned_u, locally_relevant_u, mpi_communicator);
+        earlier_cycles[k] = owned[k];
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::flag_every_cell()
+  {
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        cell->set_refine_flag();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_cycle_errors(const std::string &directory) const
+  {
+    // ‖u_N − u_k‖ in the energy norm of the tangent of the last state
+    // (for a linear material, the energy norm itself)
+    FEValues<dim> fe_values(*fe_u, cell_quadrature, update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int               n_q = cell_quadrature.size();
+    std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
+    std::vector<double>              squared(earlier_cycles.size(), 0.), scratch;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(earlier_cycles.back(), last);
+          const Materials::Interface<dim> &material = material_of(cell);
+          std::vector<Tensor<4, dim>>      tangents(n_q);
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const auto history = material_history.committed(cell->active_cell_index(), q);
+              scratch.resize(history.size());
+              tangents[q] = material.evaluate(last[q], history, make_array_view(scratch)).tangent;
+            }
+          for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
+            {
+              fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  const Tensor<2, dim> error = last[q] - earlier[q];
+                  squared[k] +=
+                      scalar_product(error, double_contract<2, 0, 3, 1>(tangents[q], error)) *
+                      fe_values.JxW(q);
+                }
+            }
+        }
+    Utilities::MPI::sum(squared, mpi_communicator, squared);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ostringstream file;
+    file << "cycle,displacement_dofs,estimated_error_sqrtNmm,error_against_last_cycle_sqrtNmm,"
+            "effectivity_index\n";
+    for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
+      {
+        const double error = std::sqrt(std::max(squared[k], 0.));
+        file << k << ',' << cycle_records[k].first << ',' << std::setprecision(8)
+             << cycle_records[k].second << ',' << error << ','
+             << (error > 0. ? cycle_records[k].second / error : 0.) << '\n';
+      }
+    SafeFiles::write_atomically(directory + "/cycle_errors.csv", file.str());
   }
 
   template <int dim>
@@ -166,7 +279,7 @@ namespace StabilizedLagrangian
     if (points.empty())
       {
         pcout << "  no contact point was in contact: the mesh is refined globally\n";
-        triangulation.refine_global(1);
+        flag_every_cell();
         return;
       }
     // the band scales with the size of the active zone (its bounding box's
@@ -196,7 +309,9 @@ namespace StabilizedLagrangian
   template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
   template void                          ContactProblem<dim>::refine_mesh();                         \
   template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \
-  template void                          ContactProblem<dim>::refine_around_active_set();
+  template void                          ContactProblem<dim>::refine_around_active_set();            \
+  template void                          ContactProblem<dim>::flag_every_cell();                     \
+  template void ContactProblem<dim>::write_cycle_errors(const std::string &) const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

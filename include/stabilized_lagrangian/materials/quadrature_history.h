@@ -74,6 +74,24 @@ namespace StabilizedLagrangian
         return {trial_values.data() + offset(cell_index, q), cell_values[cell_index]};
       }
 
+      /** @brief The committed values of every point of the active cell @p cell_index. */
+      std::vector<double>
+      committed_cell(const unsigned int cell_index) const
+      {
+        const auto begin = committed_values.begin() + offset(cell_index, 0);
+        return {begin, begin + static_cast<std::ptrdiff_t>(n_points_per_cell * n_values)};
+      }
+      /**
+       * @brief Set the committed values of the active cell @p cell_index from
+       * committed_cell() of its owner (a ghost cell's history for the error
+       * estimate; never assembled).
+       */
+      void
+      set_committed_cell(const unsigned int cell_index, const std::vector<double> &values)
+      {
+        AssertDimension(values.size(), n_points_per_cell * n_values);
+        std::copy(values.begin(), values.end(), committed_values.begin() + offset(cell_index, 0));
+      }
       /** @brief Accept the trial values of a converged load step. */
       void
       commit()

@@ -52,8 +52,20 @@ namespace StabilizedLagrangian
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
     unsigned int folded_loops = 0;
     /** points in contact that break the law they report (Contact::FrictionLawCheck) */
-    unsigned int                 friction_law_violations = 0;
-    std::string                  friction_law_report; ///< what broke it, where; empty if nothing
+    unsigned int friction_law_violations = 0;
+    std::string  friction_law_report; ///< what broke it, where; empty if nothing
+    /** the residual error estimate η in the energy norm (√(N mm); doc/formulation.md) */
+    double estimated_error = 0.;
+    /** its contact part η_C (√(N mm)) */
+    double estimated_contact_error = 0.;
+    /** the energy norm of the solution, (∫ P:∇u)^½ (√(N mm)) */
+    double energy_norm = 0.;
+    /** @brief η against the energy norm of the solution (0 for an undeformed body). */
+    double
+    relative_error() const
+    {
+      return energy_norm > 0. ? estimated_error / energy_norm : 0.;
+    }
     double                       wall_time = 0.;
     std::vector<InnerLoopRecord> inner_loops;
   };

@@ -399,6 +399,16 @@ namespace StabilizedLagrangian
     apply_dirichlet_values(const double time);
     void
     print_step_line(const StepStatistics &stats, const double elapsed) const;
+    /**
+     * Print the block that ends a run's log: mesh and DoFs, load steps and
+     * Newton iterations, the wall time and its split, the peak memory and the
+     * error estimate.
+     */
+    void
+    print_run_summary(const unsigned int n_steps, const double wall_time) const;
+    /** Collective: the largest peak resident memory of the ranks (MiB). */
+    double
+    peak_memory() const;
     /** run_summary.csv of the load path: @p path_work is the work it took, failed attempts included
      */
     void
@@ -834,7 +844,10 @@ namespace StabilizedLagrangian
     /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
     TrilinosWrappers::MPI::Vector
     ghosted_displacement() const;
-    /** Refine the mesh by the criterion of `Adaptive refinement`. */
+    /**
+     * Refine the mesh by the criterion of `Adaptive refinement`, set up the
+     * DoFs on the new mesh and carry earlier_cycles over to it.
+     */
     void
     refine_mesh();
     /**
@@ -846,6 +859,56 @@ namespace StabilizedLagrangian
     /** Flag the cells near the recorded active set for refinement. */
     void
     refine_around_active_set();
+    /** Flag every locally owned cell for refinement. */
+    void
+    flag_every_cell();
+    /**
+     * Write cycle_errors.csv into @p directory: each earlier cycle's
+     * displacement against the last one's (earlier_cycles), beside its error
+     * estimate.
+     */
+    void
+    write_cycle_errors(const std::string &directory) const;
+
+    // --- error_estimator.cc: the residual error estimate (doc/formulation.md, "Error estimate")
+    // ---
+    /**
+     * The error estimate of the converged state of a load step: η_K of every
+     * locally owned cell into error_indicators, the totals (η, its contact
+     * part, the energy norm of the solution) into @p stats.
+     */
+    void
+    estimate_error(StepStatistics &stats);
+    /** Copy the committed material history of the ghost cells from their owners. */
+    void
+    share_ghost_history();
+    /**
+     * First Piola–Kirchhoff stress of @p cell's material for @p grad_u at
+     * @p point, with the history of the cell's quadrature point nearest to it.
+     */
+    Tensor<2, dim>
+    stress_at(const typename Triangulation<dim>::cell_iterator &cell,
+              const Tensor<2, dim>                             &grad_u,
+              const Point<dim>                                 &point) const;
+    /** Add h_K² ‖div P‖²_K / E to @p squared; return ∫ P:∇u over the owned cells. */
+    double
+    add_volume_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &squared) const;
+    /** Add the stress jumps of the interior faces and the boundary residuals to @p squared. */
+    void
+    add_face_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &squared);
+    /**
+     * Add h_F ‖P N − t̄‖²_F / E of face @p f on the boundary, in the components
+     * no Dirichlet condition prescribes (t̄ the Neumann traction, 0 on a free face).
+     */
+    void
+    add_boundary_residual(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                          const unsigned int                                    f,
+                          const TrilinosWrappers::MPI::Vector                  &u,
+                          FEFaceValues<dim>                                    &face_values,
+                          Vector<double>                                       &squared);
+    /** Add the contact terms of the faces of Γc to @p contact. */
+    void
+    add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact);
 
     // --- output.cc ---
     void
@@ -1012,6 +1075,17 @@ namespace StabilizedLagrangian
     unsigned int              cycle = 0; ///< adaptive refinement cycle
     std::string  run_directory;   ///< `Output directory` (the cycles write into subdirectories)
     WorkCounters path_start_work; ///< work when the load path began
+    /** η_K of the last converged state per active cell (√(N mm)), owned cells only */
+    Vector<float> error_indicators;
+    /** the statistics of the last converged load step */
+    StepStatistics last_step;
+    /**
+     * `Errors against the last cycle`: the displacement at the end of each
+     * cycle's load path, carried through the refinements (ghosted, on
+     * dof_handler_u), and each cycle's DoFs and error estimate
+     */
+    std::vector<TrilinosWrappers::MPI::Vector>              earlier_cycles;
+    std::vector<std::pair<types::global_dof_index, double>> cycle_records;
     /** per adaptive refinement cycle, the cells this rank flagged for refinement */
     std::vector<std::vector<CellId>> refinement_history;
   };

@@ -1,0 +1,368 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/fe/fe_interface_values.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace StabilizedLagrangian
+{
+  // The residual a posteriori error estimate of the converged state
+  // (doc/formulation.md, "Error estimate"): for each cell K
+  //
+  //   η_K² = (1/E_K) [ h_K² ‖div P‖²_K + ½ Σ_F h_F ‖⟦P N⟧‖²_F + Σ_{F⊂Γ} h_F ‖P N − t̄‖²_F ]
+  //        + η_{C,K}²,
+  //
+  // η_{C,K}² the contact terms of its faces on Γc: the traction residual
+  // (h_F/E) ‖P N − t_c‖², the tension (h_F/E) ‖λ_n⁻‖², the penetration
+  // (E/h_F) ‖g_n⁻‖², the complementarity |∫_Γc λ_n g_n| (shared by the faces),
+  // the friction cone (h_F/E) ‖(|t_t| − s(λ_n))⁺‖² and the dissipation
+  // ∫ s(λ_n)|Δs| + t_t·Δs (≥ 0 point by point: |t_t| ≤ s).
+  // Every term is an energy (N mm), so η = (Σ_K η_K²)^½ estimates the energy
+  // norm of the error, in √(N mm).
+
+  template <int dim>
+  void
+  ContactProblem<dim>::estimate_error(StepStatistics &stats)
+  {
+    TimerOutput::Scope scope(timer, "error estimate");
+    share_ghost_history();
+    const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+    Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
+    double         energy = add_volume_residuals(u, squared);
+    add_face_residuals(u, squared);
+    add_contact_residuals(u, contact);
+    error_indicators.reinit(squared.size());
+    double total = 0., contact_total = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int k = cell->active_cell_index();
+          error_indicators[k]  = std::sqrt(squared[k] + contact[k]);
+          total += squared[k] + contact[k];
+          contact_total += contact[k];
+        }
+    total                         = Utilities::MPI::sum(total, mpi_communicator);
+    contact_total                 = Utilities::MPI::sum(contact_total, mpi_communicator);
+    energy                        = Utilities::MPI::sum(energy, mpi_communicator);
+    stats.estimated_error         = std::sqrt(total);
+    stats.estimated_contact_error = std::sqrt(contact_total);
+    stats.energy_norm             = std::sqrt(std::max(energy, 0.));
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::share_ghost_history()
+  {
+    // the stress of a ghost neighbour depends on its history, which only its
+    // owner updates
+    const bool has_history = std::any_of(materials.begin(), materials.end(), [](const auto &body) {
+      return body.model->n_history() > 0;
+    });
+    if (!has_history || Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
+      return;
+    using CellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    GridTools::exchange_cell_data_to_ghosts<std::vector<double>, DoFHandler<dim>>(
+        dof_handler_u,
+        [this](const CellIterator &cell) {
+          return material_history.committed_cell(cell->active_cell_index());
+        },
+        [this](const CellIterator &cell, const std::vector<double> &values) {
+          material_history.set_committed_cell(cell->active_cell_index(), values);
+        });
+  }
+
+  template <int dim>
+  Tensor<2, dim>
+  ContactProblem<dim>::stress_at(const typename Triangulation<dim>::cell_iterator &cell,
+                                 const Tensor<2, dim>                             &grad_u,
+                                 const Point<dim>                                 &point) const
+  {
+    const Materials::Interface<dim> &material = material_of(cell);
+    std::vector<double>              scratch(material.n_history());
+    ArrayView<const double>          history;
+    if (material.n_history() > 0)
+      {
+        // the history lives at the cell's quadrature points: the nearest one's
+        const Point<dim> unit =
+            StaticMappingQ1<dim>::mapping.transform_real_to_unit_cell(cell, point);
+        unsigned int nearest = 0;
+        for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
+          if (cell_quadrature.point(q).distance(unit) <
+              cell_quadrature.point(nearest).distance(unit))
+            nearest = q;
+        history = material_history.committed(cell->active_cell_index(), nearest);
+      }
+    return material.evaluate(grad_u, history, make_array_view(scratch)).stress;
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &u,
+                                            Vector<double>                      &squared) const
+  {
+    FEValues<dim> fe_values(
+        *fe_u, cell_quadrature, update_gradients | update_hessians | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
+    std::vector<Tensor<3, dim>>      hessians(cell_quadrature.size());
+    std::vector<double>              scratch;
+    double                           energy = 0.;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(u, gradients);
+          fe_values[displacement].get_function_hessians(u, hessians);
+          const Materials::Interface<dim> &material = material_of(cell);
+          double                           residual = 0.;
+          for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
+            {
+              const auto history = material_history.committed(cell->active_cell_index(), q);
+              scratch.resize(history.size());
+              const auto response =
+                  material.evaluate(gradients[q], history, make_array_view(scratch));
+              // div P = A : ∇∇u (A = ∂P/∂F), no body force
+              Tensor<1, dim> divergence;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  for (unsigned int k = 0; k < dim; ++k)
+                    for (unsigned int l = 0; l < dim; ++l)
+                      divergence[i] += response.tangent[i][j][k][l] * hessians[q][k][l][j];
+              residual += divergence.norm_square() * fe_values.JxW(q);
+              energy += scalar_product(response.stress, gradients[q]) * fe_values.JxW(q);
+            }
+          const double h = cell->diameter();
+          squared[cell->active_cell_index()] += h * h * residual / material.youngs_modulus();
+        }
+    return energy;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &u,
+                                          Vector<double>                      &squared)
+  {
+    const QGauss<dim - 1> face_quadrature(fe_u->degree + 1);
+    const UpdateFlags     flags =
+        update_gradients | update_normal_vectors | update_quadrature_points | update_JxW_values;
+    FEInterfaceValues<dim>           interface(*fe_u, face_quadrature, flags);
+    FEFaceValues<dim>                boundary(*fe_u, face_quadrature, flags);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<2, dim>> inside(face_quadrature.size()), outside(face_quadrature.size());
+    const unsigned int          none = numbers::invalid_unsigned_int;
+
+    // ½ h_F ‖⟦P N⟧‖²: each side adds the half it sees from its own cell
+    const auto add_jump = [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                              const double                                          h) {
+      const auto &own   = interface.get_fe_face_values(0);
+      const auto &other = interface.get_fe_face_values(1);
+      own[displacement].get_function_gradients(u, inside);
+      other[displacement].get_function_gradients(u, outside);
+      const typename Triangulation<dim>::cell_iterator neighbor = other.get_cell();
+      double                                           jump     = 0.;
+      for (unsigned int q = 0; q < own.n_quadrature_points; ++q)
+        {
+          const Point<dim> &x = own.quadrature_point(q);
+          jump += ((stress_at(cell, inside[q], x) - stress_at(neighbor, outside[q], x)) *
+                   own.normal_vector(q))
+                      .norm_square() *
+                  own.JxW(q);
+        }
+      squared[cell->active_cell_index()] += 0.5 * h * jump / material_of(cell).youngs_modulus();
+    };
+
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (cell->face(f)->at_boundary())
+              add_boundary_residual(cell, f, u, boundary, squared);
+            else if (cell->neighbor(f)->has_children())
+              for (unsigned int s = 0; s < cell->face(f)->n_children(); ++s)
+                {
+                  interface.reinit(cell,
+                                   f,
+                                   s,
+                                   cell->neighbor_child_on_subface(f, s),
+                                   cell->neighbor_of_neighbor(f),
+                                   none);
+                  add_jump(cell, cell->face(f)->child(s)->diameter());
+                }
+            else if (cell->neighbor_is_coarser(f))
+              {
+                const auto [neighbor_face, neighbor_subface] =
+                    cell->neighbor_of_coarser_neighbor(f);
+                interface.reinit(cell, f, none, cell->neighbor(f), neighbor_face, neighbor_subface);
+                add_jump(cell, cell->face(f)->diameter());
+              }
+            else
+              {
+                interface.reinit(
+                    cell, f, none, cell->neighbor(f), cell->neighbor_of_neighbor(f), none);
+                add_jump(cell, cell->face(f)->diameter());
+              }
+          }
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_boundary_residual(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const unsigned int                                    f,
+      const TrilinosWrappers::MPI::Vector                  &u,
+      FEFaceValues<dim>                                    &face_values,
+      Vector<double>                                       &squared)
+  {
+    const types::boundary_id id = cell->face(f)->boundary_id();
+    // Γc carries the contact terms; the master surface receives the slave's
+    // tractions at points it does not hold (no term: doc/formulation.md)
+    if (contact_parameters.boundary_ids.count(id) > 0 ||
+        contact_parameters.master_ids.count(id) > 0)
+      return;
+    // the prescribed components take any traction: the reactions
+    std::vector<bool> free(dim, true);
+    for (const auto &bc : boundary_conditions.dirichlet)
+      if (bc.boundary_id == id)
+        for (unsigned int d = 0; d < dim; ++d)
+          free[d] = free[d] && !bc.components[d];
+    if (std::none_of(free.begin(), free.end(), [](const bool b) { return b; }))
+      return;
+    face_values.reinit(cell, f);
+    std::vector<Tensor<2, dim>> gradients(face_values.n_quadrature_points);
+    face_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
+    Vector<double> prescribed(dim), load(dim);
+    double         residual = 0.;
+    for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+      {
+        const Point<dim> &x = face_values.quadrature_point(q);
+        load                = 0.;
+        for (auto &bc : boundary_conditions.neumann)
+          if (bc.boundary_id == id)
+            {
+              bc.traction->set_time(time);
+              bc.traction->vector_value(x, prescribed);
+              load += prescribed;
+            }
+        const Tensor<1, dim> traction =
+            stress_at(cell, gradients[q], x) * face_values.normal_vector(q);
+        for (unsigned int d = 0; d < dim; ++d)
+          if (free[d])
+            residual += std::pow(traction[d] - load[d], 2) * face_values.JxW(q);
+      }
+    squared[cell->active_cell_index()] +=
+        cell->face(f)->diameter() * residual / material_of(cell).youngs_modulus();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &u,
+                                             Vector<double>                      &contact)
+  {
+    FaceEvaluator                                evaluator(*this, contact_quadrature);
+    std::unique_ptr<FEFaceValues<dim>>           face_values;
+    const Quadrature<dim - 1>                   *rule = nullptr;
+    std::vector<Tensor<2, dim>>                  gradients;
+    const bool                                   friction = friction_law->has_friction();
+    std::vector<std::pair<unsigned int, double>> face_complementarity;
+    for (const auto &face : contact_faces)
+      {
+        if (!face_values || &face_quadrature(face) != rule)
+          {
+            rule        = &face_quadrature(face);
+            face_values = std::make_unique<FEFaceValues<dim>>(
+                *fe_u, *rule, update_gradients | update_normal_vectors | update_quadrature_points);
+          }
+        face_values->reinit(face.cell, face.face_no);
+        gradients.resize(rule->size());
+        (*face_values)[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
+        evaluator.reinit(face, ghosted_solution);
+        const double E        = material_of(face.cell).youngs_modulus();
+        const double h        = face.cell->face(face.face_no)->diameter();
+        double       residual = 0., gap_terms = 0., complementarity = 0., dissipation = 0.;
+        for (unsigned int q = 0; q < evaluator.n_points(); ++q)
+          {
+            ContactPointState<dim> state = contact_states[face.first_point + q];
+            ContactKinematics<dim> k     = evaluator.kinematics(q);
+            evaluate_point_state(state, k, PointRefresh());
+            const auto           point      = point_response(state, k);
+            const auto           tangential = point.tangential_traction();
+            const double         gap        = state.pairing.gap(k.position);
+            const double         lambda     = k.contact_pressure;
+            const Tensor<1, dim> applied    = point.normal_traction() * state.pairing.normal +
+                                           state.pairing.from_tangential_components(tangential);
+            const Tensor<1, dim> traction =
+                stress_at(face.cell, gradients[q], face_values->quadrature_point(q)) *
+                face_values->normal_vector(q);
+            residual += (traction - applied).norm_square() * k.JxW;
+            gap_terms += (h / E * std::pow(std::max(-lambda, 0.), 2) +
+                          E / h * std::pow(std::max(-gap, 0.), 2)) *
+                         k.JxW;
+            complementarity += lambda * gap * k.JxW;
+            if (friction)
+              {
+                const double threshold = friction_law->threshold(threshold_pressure(lambda));
+                const auto   slip      = state.pairing.tangential_components(k.step_increment);
+                residual += std::pow(std::max(tangential.norm() - threshold, 0.), 2) * k.JxW;
+                dissipation += (threshold * slip.norm() + tangential * slip) * k.JxW;
+              }
+          }
+        contact[face.cell->active_cell_index()] += h / E * residual + gap_terms + dissipation;
+        face_complementarity.emplace_back(face.cell->active_cell_index(), complementarity);
+      }
+    // The complementarity enters as the global |∫_Γc λ_n g_n| (Hild and
+    // Nicaise 2007): the weak non-penetration ∫ψ_j g_n = 0 makes it cancel
+    // over the patch of each multiplier node, while a face's own ∫_F λ_n g_n
+    // (with the O(h²) gap between the nodes of a quadratic face) stays of
+    // order h and would make the estimate decay more slowly than the error.
+    // Each face takes the share of its own |∫_F λ_n g_n|.
+    double signed_total = 0., absolute_total = 0.;
+    for (const auto &[cell, value] : face_complementarity)
+      {
+        signed_total += value;
+        absolute_total += std::abs(value);
+      }
+    signed_total   = Utilities::MPI::sum(signed_total, mpi_communicator);
+    absolute_total = Utilities::MPI::sum(absolute_total, mpi_communicator);
+    if (absolute_total > 0.)
+      for (const auto &[cell, value] : face_complementarity)
+        contact[cell] += std::abs(signed_total) * std::abs(value) / absolute_total;
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                                                         \
+  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                            \
+  template void   ContactProblem<dim>::share_ghost_history();                                       \
+  template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &,  \
+                                                            Vector<double> &) const;                \
+  template void   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &,    \
+                                                        Vector<double> &);                        \
+  template void   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &, \
+                                                           Vector<double> &);                     \
+  template Tensor<2, dim> ContactProblem<dim>::stress_at(                                           \
+      const typename Triangulation<dim>::cell_iterator &,                                           \
+      const Tensor<2, dim> &,                                                                       \
+      const Point<dim> &) const;                                                                    \
+  template void ContactProblem<dim>::add_boundary_residual(                                         \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                       \
+      unsigned int,                                                                                 \
+      const TrilinosWrappers::MPI::Vector &,                                                        \
+      FEFaceValues<dim> &,                                                                          \
+      Vector<double> &);
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian
