@@ -35,26 +35,21 @@ def existing_directory(path):
     return path
 
 
-def positive_int(text):
-    """argparse type: a whole number >= 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is not >= 1")
-    return value
+def _number(convert, kind, is_valid, condition):
+    """An argparse type: text converted by `convert` and accepted if is_valid(value)."""
+    def check(text):
+        try:
+            value = convert(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"'{text}' is not {kind}") from None
+        if not is_valid(value):
+            raise argparse.ArgumentTypeError(f"{text} is not {condition}")
+        return value
+    return check
 
 
-def positive_float(text):
-    """argparse type: a number > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"{text} is not > 0")
-    return value
+positive_int = _number(int, "a whole number", lambda v: v >= 1, ">= 1")
+positive_float = _number(float, "a number", lambda v: v > 0, "> 0")
 
 
 def setting(text):
