@@ -22,6 +22,7 @@ import sys
 from collections import OrderedDict
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 
@@ -45,16 +46,6 @@ def read_loops(output_dir):
     return steps
 
 
-def step_range(steps):
-    """The run's steps in words, for the error messages."""
-    numbers = list(steps)
-    if not numbers:
-        return "no load step"
-    if numbers == list(range(numbers[0], numbers[-1] + 1)):
-        return f"steps {numbers[0]} to {numbers[-1]}" if len(numbers) > 1 else f"step {numbers[0]} only"
-    return "steps " + ", ".join(map(str, numbers))
-
-
 def markdown_table(output_dir, wanted=()):
     """The table as markdown lines, of every step or of those in `wanted`."""
     steps = read_loops(output_dir)
@@ -64,7 +55,7 @@ def markdown_table(output_dir, wanted=()):
     missing = sorted(set(wanted) - set(steps))
     if missing:
         raise TableError(f"step{'s' if len(missing) > 1 else ''} {', '.join(map(str, missing))} "
-                         f"not in {os.path.join(output_dir, 'iterations.csv')}: the run has {step_range(steps)}")
+                         f"not in {os.path.join(output_dir, 'iterations.csv')}: the run has {run_output.describe_steps(steps)}")
     lines = ["| step | geometry it. | friction it. / geometry it. | status it. / friction it. "
              "| Newton it. / status it. | Newton total |",
              "|---:|---:|---:|---|---|---:|"]
