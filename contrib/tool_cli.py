@@ -61,15 +61,18 @@ def setting(text):
 
 
 def add_output_arguments(parser, default, doc_files, file_suffix=None):
-    """Add --output FOLDER (default `default`) and --doc, which exclude each other.
+    """Add --output FOLDER and --doc, which exclude each other.
 
-    doc_files: the files --doc writes into doc/ (for the help). With file_suffix
-    (e.g. '.md'), --output may also name the result file itself, the form earlier
-    versions of the tool took, so the commands written in doc/ keep working."""
+    default: the folder, or None for the work directory (the tool then sets
+    args.output to its --workdir). doc_files: the files --doc writes into doc/
+    (for the help). With file_suffix (e.g. '.md'), --output may also name the
+    result file itself, the form earlier versions of the tool took, so the
+    commands written in doc/ keep working."""
     group = parser.add_mutually_exclusive_group()
     also = f" (or the {file_suffix} file itself)" if file_suffix else ""
     group.add_argument("--output", metavar="FOLDER", default=default,
-                       help=f"folder that receives the results{also}; created if needed (default: {default})")
+                       help=f"folder that receives the results{also}; created if needed "
+                            f"(default: {default or 'the work directory'})")
     group.add_argument("--doc", action="store_true",
                        help=f"write {', '.join(doc_files)} into doc/, the repository's pages, instead of --output")
     parser.set_defaults(output_file_suffix=file_suffix)
