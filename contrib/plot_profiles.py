@@ -61,13 +61,6 @@ class Profile:
         return self.X.mean(0)
 
 
-def node_spacing(X):
-    """The median distance of a node to its nearest neighbour."""
-    distances = np.sqrt(((X[:, None, :] - X[None, :, :]) ** 2).sum(-1))
-    np.fill_diagonal(distances, np.inf)
-    return float(np.median(distances.min(1)))
-
-
 def default_axis(profile):
     """2D: the coordinate of the longest extent of the contact surface; 3D: x."""
     if profile.dim == 2:
@@ -99,7 +92,7 @@ def section(profile, along, centre):
             other = max(others, key=lambda i: np.ptp(profile.X[:, i])) if others else None
             if other is not None:
                 nearest = profile.X[np.argmin(np.abs(profile.X[:, other] - centre[other])), other]
-                chosen = np.nonzero(np.abs(profile.X[:, other] - nearest) <= 0.25 * node_spacing(profile.X))[0]
+                chosen = np.nonzero(np.abs(profile.X[:, other] - nearest) <= 0.25 * run_output.node_spacing(profile.X))[0]
                 which = (f"the row of nodes at {AXES[other]} = {round(nearest, 9) + 0.0:.4g} mm (through the pressure's "
                          "centroid); grey: the other nodes")
             traction = profile.t[:, k]

@@ -44,13 +44,14 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_output  # noqa: E402
 
-# name: (title, unit, kind, whether 0 means no contact): kind 'scalar', 'magnitude' (of a
-# vector) or 'status' (categories); where 0 means no contact, 0 is drawn in the body's grey
-FIELDS = {"contact_pressure": ("contact pressure", "MPa", "scalar", True),
-          "tangential_traction": ("tangential traction (magnitude)", "MPa", "magnitude", True),
-          "gap": ("gap", "mm", "scalar", False),
-          "slip_increment": ("slip increment (magnitude)", "mm", "magnitude", True),
-          "contact_status": ("contact status", None, "status", False)}
+# name: (title, unit, kind, what 0 means): kind 'scalar', 'magnitude' (of a vector) or
+# 'status' (categories); a field >= 0 whose 0 means something (no contact, ...) draws 0 in the
+# body's grey
+FIELDS = {"contact_pressure": ("contact pressure", "MPa", "scalar", "no contact"),
+          "tangential_traction": ("tangential traction (magnitude)", "MPa", "magnitude", "no friction force"),
+          "gap": ("gap", "mm", "scalar", None),
+          "slip_increment": ("slip increment (magnitude)", "mm", "magnitude", "no slip"),
+          "contact_status": ("contact status", None, "status", None)}
 WIDTH, HEIGHT = 1600, 900
 BODY_GREY = [0.82, 0.82, 0.82]
 OBSTACLE_GREY = [0.55, 0.55, 0.6]
@@ -393,7 +394,7 @@ def field_range(values_per_step):
     low = min((float(v.min()) for v in values_per_step if len(v)), default=0.0)
     # a field >= 0 in theory (pressure, magnitudes) starts at 0 unless it is clearly negative:
     # -1e-9 MPa is round-off and would hide where 0 (no contact) is drawn grey
-    low = 0.0 if FIELDS[args.field][3] and low > -1e-6 * abs(high) else min(low, 0.0)
+    low = 0.0 if FIELDS[args.field][3] is not None and low > -1e-6 * abs(high) else min(low, 0.0)
     return (low, high) if high > low else (low, low + 1.0)  # a zero field: a bar of 0 .. 1, not of round-off
 
 
@@ -487,9 +488,7 @@ def render(step, time, data, marked, values, colour_range, scale, png):
     if view_kind == "contact":
         zone_radius = np.sqrt(((deformed[zone] - centre) ** 2).sum(1)).max()
         # the zone and a few cells around it, so that a zone of one or two cells is seen in its mesh
-        nodes = deformed[on_surface][:4000]
-        distances = np.sqrt(((nodes[:, None, :] - nodes[None, :, :]) ** 2).sum(-1)) + np.eye(len(nodes)) * size
-        spacing = float(np.median(distances.min(1))) if len(nodes) > 1 else 0.0
+        spacing = run_output.node_spacing(deformed[on_surface])
         radius = max(1.6 * zone_radius, zone_radius + 4 * spacing, 0.04 * size)
         if is_3d:  # the body's surface around the zone
             framed = deformed[np.sqrt(((deformed - centre) ** 2).sum(1)) <= radius]
@@ -500,7 +499,8 @@ def render(step, time, data, marked, values, colour_range, scale, png):
     if is_3d:
         t1, _ = tangent_basis(normal)
         # contact: from the obstacle's side, 50 degrees off the normal; body: from the body's side
-        direction = (-np.cos(0.87) * normal + np.sin(0.87) * t1) if view_kind == "contact" else (0.8 * normal + t1)
+        tilt = np.radians(50)
+        direction = (-np.cos(tilt) * normal + np.sin(tilt) * t1) if view_kind == "contact" else (0.8 * normal + t1)
         up = normal
     else:
         direction, up = np.array([0, 0, 1.0]), np.array([0, 1.0, 0])
@@ -525,7 +525,8 @@ def render(step, time, data, marked, values, colour_range, scale, png):
             producer, _ = show_polydata(view, edge, [0.2, 0.2, 0.25], line_width=3 if not is_3d else 1.5)
             producers.append(producer)
 
-    title, unit, _, zero_is_open = FIELDS[args.field]
+    title, unit, _, zero_meaning = FIELDS[args.field]
+    zero_is_grey = zero_meaning is not None and colour_range[0] == 0
     if field_display is not None:
         # the colours of the bar, unshaded: a shaded colour would read as another value
         field_display.Ambient, field_display.Diffuse = 1.0, 0.0
@@ -540,7 +541,7 @@ def render(step, time, data, marked, values, colour_range, scale, png):
             lut.InterpretValuesAsCategories = 0
             lut.ApplyPreset("Rainbow Uniform", True)
             lut.RescaleTransferFunction(*colour_range)
-            if zero_is_open and colour_range[0] == 0:
+            if zero_is_grey:
                 # 0 in grey, anything above it in the map's colours: the map starts a hair above 0
                 rgb = list(lut.RGBPoints)
                 rgb[0] = 1e-6 * colour_range[1]
@@ -567,10 +568,10 @@ def render(step, time, data, marked, values, colour_range, scale, png):
         lines.append(f"normal contact force: {force:.4g} N")
     lines.append("displacement: true scale" if scale == 1 else
                  f"displacement magnified x {scale:.3g}" + (" (the obstacle is at its true place)" if obstacle else ""))
-    lines.append(describe_obstacle() + ("; seen through it (wireframe)" if obstacle and is_3d
-                                        and view_kind == "contact" else ""))
-    if field_display is not None and zero_is_open and colour_range[0] == 0:
-        lines.append(f"grey on the contact surface: {title} 0 (no contact)")
+    lines.append(describe_obstacle() + ("; seen through it (wireframe), 50 degrees off its normal"
+                                        if obstacle and is_3d and view_kind == "contact" else ""))
+    if field_display is not None and zero_is_grey:
+        lines.append(f"grey on the contact surface: {title} 0 ({zero_meaning})")
     if is_3d and view_kind == "body":
         lines.append("the contact surface faces away from this view: --view contact shows it")
     if marked is None:

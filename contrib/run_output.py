@@ -137,6 +137,22 @@ def step_times(output_dir):
     return {int(row["step"]): row["time"] for row in read_csv(path)}
 
 
+def node_spacing(points):
+    """The median distance of a point (rows of a numpy array) to its nearest neighbour, over
+    at most 2000 of them, each against all, in blocks (memory stays small for 1e5 points)."""
+    import numpy as np  # here: the rest of the module needs only the standard library
+    points = np.asarray(points, dtype=float)
+    if len(points) < 2:
+        return 0.0
+    sample = np.arange(0, len(points), max(1, len(points) // 2000))
+    nearest = []
+    for block in np.array_split(sample, max(1, len(sample) // 100)):
+        distances = np.sqrt(((points[block, None, :] - points[None, :, :]) ** 2).sum(-1))
+        distances[np.arange(len(block)), block] = np.inf
+        nearest.append(distances.min(1))
+    return float(np.median(np.concatenate(nearest)))
+
+
 def describe_steps(steps):
     """A list of step numbers in words ('steps 1 to 10')."""
     steps = sorted(steps)
