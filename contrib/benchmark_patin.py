@@ -5,18 +5,28 @@ For each level a copy of the reference parameter file is made in a temporary
 directory with the mesh (Subdivisions, Global refinements) and the output
 settings replaced; the program is run, its stdout (DoFs, TimerOutput table) and
 statistics.csv (Newton iterations per load step) are parsed, and the results go
-to doc/benchmark_patin.{csv,md,png}.
+to benchmark_patin.{csv,md,png} in the --output folder (default
+/tmp/benchmark_patin; doc/ with --doc).
 
 A level is written SUBDIVISIONS:REFINEMENTS, e.g. 2,1:4 (the reference mesh).
 """
 import argparse, csv, datetime, os, platform, re, shlex, subprocess, sys, tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DOC = os.path.join(REPO, "doc")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
+
+REPO = tool_cli.ROOT
 SECTIONS = ["assembly", "contact search", "linear solve", "output", "setup"]
 # square cells on the 100 x 50 block: 32x16, 96x48, 320x160 cells
 # -> about 1.2e3, 9.6e3 and 1.0e5 DoFs
 DEFAULT_LEVELS = ["2,1:4", "6,3:4", "10,5:5"]
+
+
+def level(text):
+    """argparse type: a mesh level 'SUBDIVISIONS:REFINEMENTS', e.g. '2,1:4'."""
+    if not re.fullmatch(r"\d+(,\d+)*:\d+", text):
+        raise argparse.ArgumentTypeError(f"'{text}' is not of the form SUBDIVISIONS:REFINEMENTS, e.g. 2,1:4")
+    return text
 
 
 def make_prm(level, outdir, with_output):
@@ -73,7 +83,7 @@ def fraction(r, *keys):
 def write_results(args, results):
     columns = ["level", "solver", "cells", "u_dofs", "lambda_dofs", "dofs", "steps", "newton",
                "newton_per_step"] + SECTIONS + ["total"]
-    with open(os.path.join(DOC, "benchmark_patin.csv"), "w", newline="") as f:
+    with open(tool_cli.destination(args, "benchmark_patin.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, columns, extrasaction="ignore")
         w.writeheader()
         w.writerows(results)
@@ -133,24 +143,28 @@ def write_results(args, results):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
         fig.tight_layout()
-        fig.savefig(os.path.join(DOC, "benchmark_patin.png"), dpi=100)
+        fig.savefig(tool_cli.destination(args, "benchmark_patin.png"), dpi=100)
         lines += ["", "![time per phase vs DoFs](benchmark_patin.png)"]
     except ImportError:
         pass
-    with open(os.path.join(DOC, "benchmark_patin.md"), "w") as f:
+    markdown = tool_cli.destination(args, "benchmark_patin.md")
+    with open(markdown, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
+    print(f"wrote {os.path.dirname(markdown)}/benchmark_patin.{{csv,md,png}}")
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--executable", default=os.path.join(REPO, "build", "stabilized_lagrangian"))
-    p.add_argument("--mpirun", type=int, metavar="N", help="run with mpirun -np N")
-    p.add_argument("--levels", nargs="+", default=DEFAULT_LEVELS, metavar="SUBDIV:REF",
+    p.add_argument("--executable", default=os.path.join(REPO, "build", "stabilized_lagrangian"),
+                   type=tool_cli.executable, help="default: build/stabilized_lagrangian of the repository")
+    p.add_argument("--mpirun", type=tool_cli.positive_int, metavar="N", help="run with mpirun -np N")
+    p.add_argument("--levels", nargs="+", default=DEFAULT_LEVELS, metavar="SUBDIV:REF", type=level,
                    help="meshes as 'Subdivisions:Global refinements' (default: %(default)s)")
     p.add_argument("--with-output", action="store_true", help="write vtu and profile files (timed)")
+    tool_cli.add_output_arguments(p, "/tmp/benchmark_patin", ["benchmark_patin.{csv,md,png}"])
     args = p.parse_args()
-    args.executable = os.path.abspath(args.executable)
+    tool_cli.check_output(p, args)
     args.load = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="benchmark_patin_") as tmp:
         results = sorted((run_level(args, level, tmp) for level in args.levels),

@@ -17,7 +17,7 @@ order that changes from run to run, which moves the values at round-off.
         --after build/stabilized_lagrangian --workdir /tmp/compare
 
 Exit code 0 when every file agrees, 1 otherwise; a table of the comparisons on
-standard output."""
+standard output, and in FOLDER/compare_outputs.md with --output FOLDER."""
 import argparse
 import concurrent.futures
 import csv
@@ -26,6 +26,9 @@ import os
 import re
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
@@ -116,14 +119,23 @@ def compare_file(a_path, b_path, tolerance, scale):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--before", required=True, help="the reference executable")
-    parser.add_argument("--after", required=True, help="the executable to check")
+    parser.add_argument("--before", required=True, type=tool_cli.executable, help="the reference executable")
+    parser.add_argument("--after", required=True, type=tool_cli.executable, help="the executable to check")
     parser.add_argument("--workdir", required=True)
-    parser.add_argument("--scenes", nargs="*", default=sorted(glob.glob(os.path.join(ROOT, "prm", "*.prm"))))
-    parser.add_argument("--ranks", nargs="*", type=int, default=[1, 2])
-    parser.add_argument("--tolerance", type=float, default=1e-12)
-    parser.add_argument("--jobs", type=int, default=1, help="runs at a time (each uses `ranks` cores)")
+    parser.add_argument("--scenes", nargs="*", type=tool_cli.existing_file,
+                        default=sorted(glob.glob(os.path.join(ROOT, "prm", "*.prm"))))
+    parser.add_argument("--ranks", nargs="*", type=tool_cli.positive_int, default=[1, 2])
+    parser.add_argument("--tolerance", type=tool_cli.positive_float, default=1e-12)
+    parser.add_argument("--jobs", type=tool_cli.positive_int, default=1, help="runs at a time (each uses `ranks` cores)")
+    parser.add_argument("--output", metavar="FOLDER", help="also write the table to FOLDER/compare_outputs.md")
     args = parser.parse_args()
+    if args.output and os.path.exists(args.output) and not os.path.isdir(args.output):
+        parser.error(f"argument --output: '{args.output}' exists and is not a directory")
+    table = []
+
+    def report(line):
+        print(line, flush=True)
+        table.append(line)
 
     cases = [(scene, ranks, which, executable) for scene in args.scenes for ranks in args.ranks
              for which, executable in (("before", args.before), ("after", args.after))]
@@ -133,7 +145,7 @@ def main():
         codes = dict(zip(cases, pool.map(lambda c: run(c[3], c[0], c[1], directory[c]), cases)))
 
     failures = 0
-    print(f"| scene | ranks | files | result |\n|---|---|---|---|")
+    report("| scene | ranks | files | result |\n|---|---|---|---|")
     for scene in args.scenes:
         for ranks in args.ranks:
             name = os.path.splitext(os.path.basename(scene))[0]
@@ -157,7 +169,11 @@ def main():
             failures += bool(problems)
             result = "same" if not problems else "; ".join(problems[:5]) + \
                 (f" (and {len(problems) - 5} more)" if len(problems) > 5 else "")
-            print(f"| {name} | {ranks} | {len(files)} | {result} |", flush=True)
+            report(f"| {name} | {ranks} | {len(files)} | {result} |")
+    if args.output:
+        os.makedirs(args.output, exist_ok=True)
+        with open(os.path.join(args.output, "compare_outputs.md"), "w") as f:
+            f.write("\n".join(table) + "\n")
     return 1 if failures else 0
 
 

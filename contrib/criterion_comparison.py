@@ -2,8 +2,7 @@
 """Mean Newton iterations per load step before and after the scaled Newton
 stopping criterion (doc/newton_criterion.md).
 
-    contrib/criterion_comparison.py --old-executable OLD --new-executable NEW \\
-        --output doc/newton_criterion.md
+    contrib/criterion_comparison.py --old-executable OLD --new-executable NEW --doc
 
 Runs prm/patin_elastic.prm, prm/patin_neo_hookean.prm, prm/patin_elastoplastic.prm
 and prm/hertz_cylinder.prm as shipped, each with the nested loops (the default)
@@ -18,9 +17,11 @@ Status loop subsections of `Nonlinear solver`), with
 Writes the table of mean Newton iterations per load step (run_summary.csv
 mean_newton_iterations_per_step), load steps and, where the binary reports
 them, the Newton iterations of failed (cut) attempts, as the section
-"Mean Newton iterations per load step, before and after" of OUTPUT: replaced if
-OUTPUT has it (between its begin/end comments), appended otherwise. Each run is
-in WORKDIR/<scene>/<algorithm>/<binary> with its input.prm and log.txt."""
+"Mean Newton iterations per load step, before and after" of newton_criterion.md
+in the --output folder (default: the work directory; or --output FILE.md), or of
+doc/newton_criterion.md with --doc: replaced if the file has it (between its
+begin/end comments), appended otherwise. Each run is in
+WORKDIR/<scene>/<algorithm>/<binary> with its input.prm and log.txt."""
 import argparse
 import csv
 import os
@@ -30,6 +31,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
 from robustness_map import GENERALIZED_NEWTON, nested_set, write_section  # noqa: E402
 
 root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -77,11 +79,16 @@ def failed_cell(summary):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--old-executable", required=True, help="binary of the absolute criterion (before)")
-    parser.add_argument("--new-executable", required=True, help="binary of the scaled criterion (after)")
-    parser.add_argument("--output", required=True, help="markdown file: the section is replaced or appended")
-    parser.add_argument("--workdir", default="/tmp/criterion_comparison")
+    parser.add_argument("--old-executable", required=True, type=tool_cli.executable,
+                        help="binary of the absolute criterion (before)")
+    parser.add_argument("--new-executable", required=True, type=tool_cli.executable,
+                        help="binary of the scaled criterion (after)")
+    tool_cli.add_output_arguments(parser, None, ["the section of newton_criterion.md"], file_suffix=".md")
+    parser.add_argument("--workdir", default="/tmp/criterion_comparison", help="default: %(default)s")
     args = parser.parse_args()
+    args.output = args.output or args.workdir
+    tool_cli.check_output(parser, args)
+    output = tool_cli.destination(args, "newton_criterion.md")
     binaries = [("old", os.path.abspath(args.old_executable), ""),
                 ("new", os.path.abspath(args.new_executable), ""),
                 ("new_absolute", os.path.abspath(args.new_executable), ABSOLUTE)]
@@ -130,8 +137,8 @@ def main():
                "| scene | algorithm | before: mean / step | before: steps | after: mean / step | after: steps "
                "| after: failed | new binary, absolute 1e-6: mean / step | steps | failed |",
                "|---|---|---|---|---|---|---|---|---|---|"] + rows + ["", END]
-    write_section(args.output, BEGIN, END, "\n".join(section) + "\n")
-    print(f"wrote the section of {args.output}")
+    write_section(output, BEGIN, END, "\n".join(section) + "\n")
+    print(f"wrote the section of {output}")
 
 
 if __name__ == "__main__":

@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """The Hertz scenes with a given pair and mesh, and the errors of a computed
 contact pressure profile against Hertz's closed form with the run's own
 normal force P (shared by contrib/benchmark_hertz.py and tests/hertz_pairs.py).
@@ -12,6 +13,7 @@ interval, so the square-root edge is integrated accurately; 3D: root mean
 square of the nodal errors over the nodes within 1.5 a."""
 import math
 import os
+import sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 
@@ -81,3 +83,9 @@ def hertz_errors(dim, P, profile, E=200000.0, nu=0.3, R=100.0):
         den = sum(exact(x) ** 2 for x, _ in near)
     return {"h_mm": h, "half_width_error": abs(a - a_h) / a_h, "peak_error": abs(p0 - p0_h) / p0_h,
             "l2_error": math.sqrt(num / den), "a_mm": a, "a_hertz_mm": a_h}
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import tool_cli
+    tool_cli.module_help(__doc__)

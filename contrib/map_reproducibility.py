@@ -4,7 +4,7 @@ BLAS threads and with the OpenBLAS kernels of another CPU, compared cell by cell
 (doc/newton_criterion.md, "Reproducibility of the J2 map").
 
     contrib/map_reproducibility.py --executable build/stabilized_lagrangian \\
-        --scene prm/patin_elastoplastic.prm --output doc/newton_criterion.md
+        --scene prm/patin_elastoplastic.prm --doc
 
 The map is that of contrib/robustness_study.py --part maps (r_n = 1e1..1e13, 9
 log points, x r_t = 1e-4..1e6, 11 log points; Maximum step cuts = 0, at most 300
@@ -18,9 +18,11 @@ A cell differs when its outcome, load steps or Newton iterations differ from
 threads1's, or when any loop count of its statistics.csv (geometry, friction,
 status and Newton iterations, failed-attempt iterations, assemblies, per step)
 or of its iterations.csv (every column but the residual) differs. Writes the
-section "Reproducibility of the J2 map" of OUTPUT (replaced between its
-begin/end comments, or appended) and WORKDIR/<algorithm>_<variant>.csv; exits
-with 1 if a cell differs."""
+section "Reproducibility of the J2 map" of newton_criterion.md in the --output
+folder (default: the work directory; or --output FILE.md), or of
+doc/newton_criterion.md with --doc (replaced between its begin/end comments, or
+appended), and WORKDIR/<algorithm>_<variant>.csv; exits with 1 if a cell
+differs."""
 import argparse
 import csv
 import os
@@ -30,6 +32,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
 from robustness_map import build_scene, log_grid, sweep, write_csv, write_section  # noqa: E402
 
 MAP_RN = (1e1, 1e13, 9)  # the grid of contrib/robustness_study.py --part maps
@@ -59,15 +62,18 @@ def loop_counts(case_dir):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--executable", required=True)
-    parser.add_argument("--scene", required=True)
-    parser.add_argument("--output", required=True, help="markdown file: the section is replaced or appended")
+    parser.add_argument("--executable", required=True, type=tool_cli.executable)
+    parser.add_argument("--scene", required=True, type=tool_cli.existing_file)
+    tool_cli.add_output_arguments(parser, None, ["the section of newton_criterion.md"], file_suffix=".md")
     parser.add_argument("--algorithm", action="append", choices=["nested", "newton"],
                         help="repeatable (default: both)")
-    parser.add_argument("--jobs", type=int, default=1)
-    parser.add_argument("--timeout", type=float, default=600)
-    parser.add_argument("--workdir", default="/tmp/map_reproducibility")
+    parser.add_argument("--jobs", type=tool_cli.positive_int, default=1)
+    parser.add_argument("--timeout", type=tool_cli.positive_float, default=600, help="seconds per case")
+    parser.add_argument("--workdir", default="/tmp/map_reproducibility", help="default: %(default)s")
     args = parser.parse_args()
+    args.output = args.output or args.workdir
+    tool_cli.check_output(parser, args)
+    output = tool_cli.destination(args, "newton_criterion.md")
     algorithms = args.algorithm or ["nested", "newton"]
     command = " ".join(["contrib/map_reproducibility.py"] + [shlex.quote(a) for a in sys.argv[1:]])
     rn_values, rt_values = log_grid(*MAP_RN), log_grid(*MAP_RT)
@@ -140,9 +146,9 @@ def main():
                "assemblies, per step) or of its iterations.csv (every column but the residual) does. Per-case "
                f"directories: `{args.workdir}/<algorithm>_<variant>/rnII_rtJJ`.", ""] + lines + [
                f"**{total_differ} cell(s) differ** over the {len(algorithms)} × 2 comparisons.", "", END]
-    write_section(args.output, BEGIN, END, "\n".join(section) + "\n")
+    write_section(output, BEGIN, END, "\n".join(section) + "\n")
     print("\n".join(lines))
-    print(f"{total_differ} cell(s) differ; wrote the section of {args.output}")
+    print(f"{total_differ} cell(s) differ; wrote the section of {output}")
     return 1 if total_differ else 0
 
 

@@ -4,7 +4,7 @@ criterion (the default) and the seed's absolute one (1e-6 N), side by side
 (doc/newton_criterion.md).
 
     contrib/residual_history.py --executable build/stabilized_lagrangian \\
-        --scene prm/patin_elastoplastic.prm --output doc/newton_criterion.md
+        --scene prm/patin_elastoplastic.prm --doc
 
 Each run logs every Newton iterate (`Output/Log Newton iterations`); the worst
 step is the one with the most Newton iterations under the absolute criterion,
@@ -13,16 +13,20 @@ steps, so the step is matched by pseudo-time: the scaled run shows its steps
 (and their failed attempts) that overlap the worst step's time interval. For
 each inner loop the table lists the residual in N and the largest scaled block
 at every iterate, and where each criterion stopped. The table is written as the
-section of OUTPUT between its begin/end comments (replaced if OUTPUT has it,
-appended otherwise), so the file can hold other sections."""
+section of newton_criterion.md between its begin/end comments (replaced if the
+file has it, appended otherwise, so the file can hold other sections), in the
+--output folder (default /tmp/residual_history; or --output FILE.md), or in
+doc/ with --doc."""
 import argparse
 import os
 import re
+import shlex
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
 from robustness_map import write_section  # noqa: E402
 
 CRITERIA = {
@@ -95,10 +99,14 @@ def step_iterations(step):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--executable", required=True)
-    parser.add_argument("--scene", required=True)
-    parser.add_argument("--output", required=True)
+    parser.add_argument("--executable", required=True, type=tool_cli.executable)
+    parser.add_argument("--scene", required=True, type=tool_cli.existing_file)
+    tool_cli.add_output_arguments(parser, "/tmp/residual_history", ["the section of newton_criterion.md"],
+                                  file_suffix=".md")
     args = parser.parse_args()
+    tool_cli.check_output(parser, args)
+    output = tool_cli.destination(args, "newton_criterion.md")
+    command = " ".join(["contrib/residual_history.py"] + [shlex.quote(a) for a in sys.argv[1:]])
     with open(args.scene) as f:
         scene_text = f.read()
     with tempfile.TemporaryDirectory() as tmp:
@@ -108,8 +116,7 @@ def main():
     _, t_start, t_end, _ = worst
     lines = [BEGIN, f"## Newton residual history: {os.path.basename(args.scene)}, t = {t_start:g} … {t_end:g}",
              "",
-             f"Written by `contrib/residual_history.py --executable {args.executable} "
-             f"--scene {args.scene} --output {args.output}`.",
+             f"Written by `{command}`.",
              "",
              "Newton iterations of the run (accepted attempts, and in failed (cut) attempts): " +
              ", ".join(f"{c} {runs[c][1]} and {runs[c][2] if runs[c][2] is not None else '?'}"
@@ -167,7 +174,8 @@ def main():
                                      f"{mark}{scaled:.3e}{mark} |")
         lines.append("")
     lines.append(END)
-    write_section(args.output, BEGIN, END, "\n".join(lines) + "\n")
+    write_section(output, BEGIN, END, "\n".join(lines) + "\n")
+    print(f"wrote the section of {output}")
     print("\n".join(lines[1:11]))
 
 

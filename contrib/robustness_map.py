@@ -4,11 +4,11 @@
 Usage: contrib/robustness_map.py --executable build/stabilized_lagrangian --scene prm/patin_elastic.prm
            [--label TEXT] [--rn MIN MAX N] [--rt MIN MAX N] [--set 'Section/Sub/Entry=value' ...]
            [--algorithm nested|newton] [--max-cuts N] [--jobs N] [--timeout SECONDS]
-           [--workdir DIR] [--output PREFIX]
+           [--workdir DIR] [--output FOLDER] [--name NAME]
 
 Runs the scene for every (r_n, r_t) of a log-spaced grid (N values from MIN to
 MAX each), in parallel, each case in its own directory WORKDIR/rnII_rtJJ, and
-writes PREFIX.csv (one row per case) and PREFIX.png (a heat map of the mean
+writes FOLDER/NAME.csv (one row per case) and FOLDER/NAME.png (a heat map of the mean
 Newton iterations per load step; diverged cells grey with an x, error/timeout
 cells red, the edge of the converged region in black). With the default
 --max-cuts 0 a load step that fails is not retried with a smaller step, so a
@@ -49,6 +49,9 @@ from matplotlib.colors import ListedColormap, Normalize
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_cli  # noqa: E402
 
 COLUMNS = ["r_n", "r_t", "outcome", "exit_code", "load_steps", "newton_iterations", "mean_newton_per_step",
            "wall_time_s", "nan_in_output"]
@@ -423,32 +426,41 @@ def print_bounds(rows):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--executable", required=True)
-    parser.add_argument("--scene", required=True, help="the parameter file")
+    parser.add_argument("--executable", required=True, type=tool_cli.executable)
+    parser.add_argument("--scene", required=True, type=tool_cli.existing_file, help="the parameter file")
     parser.add_argument("--label", help="the map's title (default: scene name and algorithm)")
     parser.add_argument("--rn", nargs=3, type=float, metavar=("MIN", "MAX", "N"), default=[1e2, 1e10, 9])
     parser.add_argument("--rt", nargs=3, type=float, metavar=("MIN", "MAX", "N"), default=[1e-4, 1e4, 9])
     parser.add_argument("--set", action="append", default=[], metavar="'Section/Sub/Entry=value'",
-                        help="an entry to set, repeatable")
+                        type=tool_cli.setting, help="an entry to set, repeatable")
     parser.add_argument("--algorithm", choices=["nested", "newton"], default="nested")
     parser.add_argument("--max-cuts", type=int, default=0, help="Load stepping/Maximum step cuts (default 0)")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count())
-    parser.add_argument("--timeout", type=float, default=600, help="seconds per case (default 600)")
+    parser.add_argument("--jobs", type=tool_cli.positive_int, default=os.cpu_count())
+    parser.add_argument("--timeout", type=tool_cli.positive_float, default=600, help="seconds per case (default 600)")
     parser.add_argument("--workdir", help="default /tmp/robustness/<label>")
-    parser.add_argument("--output", help="writes OUTPUT.csv and OUTPUT.png (default WORKDIR/map)")
+    parser.add_argument("--output", metavar="FOLDER", help="folder of NAME.csv and NAME.png, created if needed "
+                        "(default: WORKDIR)")
+    parser.add_argument("--name", default="map", help="name of the CSV and PNG files (default: %(default)s)")
     args = parser.parse_args()
+    if args.max_cuts < 0:
+        parser.error(f"argument --max-cuts: {args.max_cuts} is not >= 0")
+    if "/" in args.name or not args.name:
+        parser.error(f"argument --name: '{args.name}' is not a file name")
     for name in ("rn", "rt"):
         low, high, n = getattr(args, name)
         if not (0 < low <= high and n >= 1 and n == int(n)):
             parser.error(f"--{name} MIN MAX N needs 0 < MIN <= MAX and an integer N >= 1")
     label = args.label or f"{os.path.splitext(os.path.basename(args.scene))[0]}, {args.algorithm}"
     workdir = args.workdir or os.path.join("/tmp/robustness", re.sub(r"[^\w.-]+", "_", label).strip("_"))
-    output = args.output or os.path.join(workdir, "map")
+    folder = args.output or workdir
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        parser.error(f"argument --output: '{folder}' exists and is not a directory")
+    output = os.path.join(folder, args.name)
     try:
         scene_text = build_scene(args.scene, args.set, args.algorithm, args.max_cuts)
     except ValueError as error:
         parser.error(str(error))
-    os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
+    os.makedirs(folder, exist_ok=True)
 
     rows = sweep(args.executable, scene_text, log_grid(args.rn[0], args.rn[1], int(args.rn[2])),
                  log_grid(args.rt[0], args.rt[1], int(args.rt[2])), workdir, args.jobs, args.timeout)

@@ -3,16 +3,18 @@
 
 Usage: contrib/robustness_study.py --executable build/stabilized_lagrangian
            [--part maps|scaling|automatic|all] [--jobs N] [--timeout SECONDS] [--workdir DIR]
+           [--output FOLDER | --doc]
 
-Three parts, each writing into doc/ and its own section of doc/robustness_results.md
-(the sections of the parts not run are kept):
+Three parts, each writing its data and plots into the results folder (--output,
+default the work directory; doc/ with --doc) and its own section of
+robustness_results.md there (the sections of the parts not run are kept):
 
 maps       for prm/patin_{elastic,neo_hookean,elastoplastic}.prm, the nested fixed
            point and the generalized Newton maps (contrib/robustness_map.py) on
            r_n = 1e1..1e13 (9 log points) x r_t = 1e-4..1e6 (11), with Maximum step
            cuts = 0 (a failed step is a divergence, as in the seed paper) and
            Maximum Newton iterations per load step = 300. Writes
-           doc/robustness_<scene>_{nested,newton}.csv and doc/robustness_<scene>.png
+           robustness_<scene>_{nested,newton}.csv and robustness_<scene>.png
            (both maps side by side, one colour scale), and per map I1 x I2 and the
            fewest mean Newton iterations per load step.
 scaling    on the elastic patin, for both algorithms and the configurations
@@ -21,13 +23,13 @@ scaling    on the elastic patin, for both algorithms and the configurations
            of r_t = 1e-5..1e8 at r_n = 1e4, 2 points per decade, same cuts and
            Newton budget as the maps. r_max (r_min) is the largest (smallest)
            converged value before the first failure above (below) the value with
-           the fewest iterations. Writes doc/robustness_scaling.csv (one row per
+           the fewest iterations. Writes robustness_scaling.csv (one row per
            configuration, algorithm and swept parameter, with C = r_max h / E for
-           r_n, r_max h / mu for r_t) and doc/robustness_scaling.png.
+           r_n, r_max h / mu for r_t) and robustness_scaling.png.
 automatic  r_n = r_t = automatic with both Automatic factors = f, f = 1e-6..1e12, for
            the three patin scenes and prm/hertz_cylinder.prm, both algorithms,
            the scenes' step cuts and Newton budget as shipped. Writes
-           doc/robustness_automatic.csv and the worst/best ratio of the mean
+           robustness_automatic.csv and the worst/best ratio of the mean
            iterations over f in [1e-4, 1e4].
 
 Every case runs in its own directory under WORKDIR (default /tmp/robustness_study),
@@ -51,12 +53,14 @@ from matplotlib.lines import Line2D
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import robustness_map  # noqa: E402
+import tool_cli  # noqa: E402
 from robustness_map import (build_scene, convergence_bounds, draw_map, log_grid, nested_set,  # noqa: E402
                             sweep, write_csv)
 
 root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-doc = os.path.join(root, "doc")
-results_md = os.path.join(doc, "robustness_results.md")
+# the results folder and its page, set by main() from --output or --doc
+results_folder = None
+results_md = None
 PARTS = ["maps", "scaling", "automatic"]
 PATIN_SCENES = [("elastic", "elastic patin"), ("neo_hookean", "neo-Hookean patin"),
                 ("elastoplastic", "J2 elasto-plastic patin")]
@@ -133,7 +137,7 @@ def run_maps(args):
             text = build_scene(scene_path, [NEWTON_BUDGET], algorithm, max_cuts=0)
             rows = sweep(args.executable, text, log_grid(*MAP_RN), log_grid(*MAP_RT),
                          os.path.join(args.workdir, "maps", scene, algorithm), args.jobs, args.timeout)
-            write_csv(rows, os.path.join(doc, f"robustness_{scene}_{algorithm}.csv"))
+            write_csv(rows, os.path.join(results_folder, f"robustness_{scene}_{algorithm}.csv"))
             maps[algorithm] = (rows, time.monotonic() - start)
             bugs += [(r, map_case_dir(args.workdir, scene, algorithm, r)) for r in rows]
         # both maps on one colour scale: whole iterations over the converged cells of both
@@ -146,7 +150,7 @@ def run_maps(args):
         for ax, algorithm in zip(axes, ALGORITHMS):
             mappable = draw_map(ax, maps[algorithm][0], f"{title}: {ALGORITHM_NAMES[algorithm]}", norm=norm)
         figure.colorbar(mappable, ax=list(axes), label="mean Newton iterations per load step")
-        png = os.path.join(doc, f"robustness_{scene}.png")
+        png = os.path.join(results_folder, f"robustness_{scene}.png")
         figure.savefig(png, dpi=120)
 
         lines += [f"### {title} (`prm/patin_{scene}.prm`)", "",
@@ -182,7 +186,7 @@ def run_maps(args):
               "cuts = 0 (a failed load step is a divergence, as in the seed paper), Nonlinear solver/Maximum "
               "Newton iterations per load step = 300. I1 x I2 is the largest all-converged rectangle of the grid "
               "(contrib/robustness_map.py convergence_bounds); the iteration counts are mean Newton iterations "
-              "per load step (10 steps). Data: `doc/robustness_<scene>_{nested,newton}.csv`.", ""]
+              "per load step (10 steps). Data: `robustness_<scene>_{nested,newton}.csv`, beside this page.", ""]
     return header + lines, bugs
 
 
@@ -253,13 +257,13 @@ def run_scaling(args):
                     best_value=best and best[parameter], best_mean_newton_per_step=best and best["mean_newton_per_step"],
                     r_min=r_min, r_max=r_max, C_min=r_min and r_min * h / scale, C_max=r_max and r_max * h / scale,
                     failures=sum(is_bug(r) for r in rows), pattern=pattern(rows, parameter)))
-    with open(os.path.join(doc, "robustness_scaling.csv"), "w", newline="") as f:
+    with open(os.path.join(results_folder, "robustness_scaling.csv"), "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(SCALING_COLUMNS)
         for row in table:
             writer.writerow(["" if row[c] is None else (repr(row[c]) if isinstance(row[c], float) else row[c])
                              for c in SCALING_COLUMNS])
-    plot_scaling(table, os.path.join(doc, "robustness_scaling.png"))
+    plot_scaling(table, os.path.join(results_folder, "robustness_scaling.png"))
     return scaling_markdown(table), bugs
 
 
@@ -339,7 +343,7 @@ def scaling_markdown(table):
              "(dimensionless); \"≥ X\" (\"≤ X\"): r_max (r_min) is beyond the range, X is C at its end. The "
              "grid step is a factor √10 ≈ 3.16, so each r_max, r_min and C is known to within that factor only. "
              "Outcomes: one character per swept value, + converged, . diverged, E error/timeout. "
-             "Data: `doc/robustness_scaling.csv`.", "",
+             "Data: `robustness_scaling.csv`, beside this page.", "",
              "![scaling](robustness_scaling.png)", ""]
     for parameter, scale_name, values in (("r_n", "E", SCALING_RN), ("r_t", "μ", SCALING_RT)):
         lines += [f"#### {parameter} (C = {parameter}·h/{scale_name})", "",
@@ -455,7 +459,7 @@ def run_automatic(args):
     for (scene, algorithm, factor), _, case_dir in cases:
         row = results[scene, algorithm, factor]
         table.append(dict(scene=scene, algorithm=algorithm, factor=factor, case_dir=case_dir, **row))
-    with open(os.path.join(doc, "robustness_automatic.csv"), "w", newline="") as f:
+    with open(os.path.join(results_folder, "robustness_automatic.csv"), "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(AUTOMATIC_COLUMNS)
         for row in table:
@@ -476,7 +480,7 @@ def automatic_markdown(table):
              "increment of a load step; C_n and C_t in include/stabilized_lagrangian/contact/stabilized_lagrangian.h; "
              "the Hertz cylinder is frictionless, r_t scales no rows there) with both Automatic factors = f; the step "
              "cuts (5) and the Newton budget (2000 per load step) as shipped, so \"div.\" = still failing at the "
-             "smallest cut step. Data: `doc/robustness_automatic.csv`.", "",
+             "smallest cut step. Data: `robustness_automatic.csv`, beside this page.", "",
              "Values at f = 1:", "",
              "| scene | r_n (N/mm³) | r_t (1/mm) |", "|---|---|---|"]
     for scene, title in AUTOMATIC_SCENES:
@@ -522,7 +526,7 @@ def automatic_markdown(table):
 # ---------------------------------------------------------------------------------------- markdown
 
 def write_results(part, body, command, seconds, bugs):
-    """Replace the section of part in doc/robustness_results.md (the other parts' sections are kept)."""
+    """Replace the section of part in robustness_results.md (the other parts' sections are kept)."""
     titles = dict(maps="A. Robustness maps r_n × r_t", scaling="B. Scaling of the convergence bounds with E, μ, h",
                   automatic="C. Automatic parameters scaled by a factor")
     sections = {}
@@ -545,9 +549,10 @@ def write_results(part, body, command, seconds, bugs):
     lines.append(f"<!-- end {part} -->")
     sections[part] = "\n".join(lines) + "\n"
     header = ["# Robustness study of the augmentation parameters r_n, r_t", "",
-              "Generated file, do not edit: written by `contrib/robustness_study.py` (each section below says the "
-              "command that produced it; `--part all` writes them all). The per-case input.prm and log.txt are in "
-              "the --workdir (default /tmp/robustness_study).", ""]
+              "Generated file, do not edit: written by `contrib/robustness_study.py"
+              + (" --doc" if results_folder == tool_cli.DOC else "") + "` (each section below says "
+              "the command that produced it; `--part all` writes them all). The per-case input.prm and log.txt are "
+              "in the --workdir (default /tmp/robustness_study).", ""]
     with open(results_md, "w") as f:
         f.write("\n".join(header) + "\n" + "\n".join(sections[name] for name in PARTS if name in sections))
     print(f"wrote section '{part}' of {results_md}")
@@ -555,14 +560,20 @@ def write_results(part, body, command, seconds, bugs):
 
 
 def main():
+    global results_folder, results_md
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--executable", required=True)
-    parser.add_argument("--workdir", default="/tmp/robustness_study")
+    parser.add_argument("--executable", required=True, type=tool_cli.executable)
+    parser.add_argument("--workdir", default="/tmp/robustness_study", help="where the cases run (default: %(default)s)")
     parser.add_argument("--part", choices=PARTS + ["all"], default="all")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count())
-    parser.add_argument("--timeout", type=float, default=600, help="seconds per case (default 600)")
+    parser.add_argument("--jobs", type=tool_cli.positive_int, default=os.cpu_count())
+    parser.add_argument("--timeout", type=tool_cli.positive_float, default=600, help="seconds per case (default 600)")
+    tool_cli.add_output_arguments(parser, None, ["robustness_results.md", "its CSV files and plots"])
     args = parser.parse_args()
     args.workdir = os.path.abspath(args.workdir)
+    args.output = args.output or args.workdir
+    tool_cli.check_output(parser, args)
+    results_md = tool_cli.destination(args, "robustness_results.md")
+    results_folder = os.path.dirname(results_md)
     command = " ".join(["contrib/robustness_study.py"] + [shlex.quote(a) for a in sys.argv[1:]])
     runners = dict(maps=run_maps, scaling=run_scaling, automatic=run_automatic)
     bug_count = 0

@@ -1,0 +1,194 @@
+#!/usr/bin/python3
+"""Reading a run's output directory (imported by render_pvd.py and plot_profiles.py).
+
+The parameters the run used (parameters.prm, in the directory or, for the
+cycle-N/ directories of adaptive refinement, the one above), the rigid
+obstacle and the friction law they define, the load steps of solution.pvd and
+of the profile-NNNNN.csv files. Standard library only: render_pvd.py runs it
+under ParaView's Python."""
+import csv
+import math
+import os
+import re
+import sys
+
+
+class OutputError(Exception):
+    """The output directory does not hold what was asked for; the message says what it holds."""
+
+
+def parameters_path(output_dir):
+    """parameters.prm of the run that wrote output_dir, or None."""
+    for directory in (output_dir, os.path.dirname(os.path.abspath(output_dir))):
+        path = os.path.join(directory, "parameters.prm")
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def read_parameters(path):
+    """{'Section/Sub/Entry': value} of a parameter file in deal.II's format."""
+    values, sections, pending = {}, [], ""
+    with open(path) as f:
+        for raw in f:
+            # '#' starts a comment unless escaped; a trailing backslash continues the line
+            line = pending + re.sub(r"(?<!\\)#.*", "", raw.rstrip("\n")).replace("\\#", "#")
+            if line.rstrip().endswith("\\"):
+                pending = line.rstrip()[:-1] + " "
+                continue
+            pending = ""
+            words = line.strip()
+            if words.startswith("subsection "):
+                sections.append(words[len("subsection "):].strip())
+            elif words == "end":
+                if sections:
+                    sections.pop()
+            elif words.startswith("set "):
+                name, _, value = words[len("set "):].partition("=")
+                values["/".join(sections + [name.strip()])] = value.strip()
+    return values
+
+
+def run_parameters(output_dir):
+    """The parameters of the run that wrote output_dir ({} if it has no parameters.prm)."""
+    path = parameters_path(output_dir)
+    return read_parameters(path) if path else {}
+
+
+def _vector(text, dim, entry):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != dim:
+        raise OutputError(f"{entry} = '{text}' is not {dim} comma-separated numbers")
+    return values + [0.0] * (3 - dim)
+
+
+def rigid_obstacle(parameters):
+    """The rigid obstacle as a dict: model 'plane' with point and unit normal, or 'ball' with
+    center and radius (3-vectors, z = 0 in 2D); None when the master is a second deformable
+    body (Contact/Master boundary ids) or the run's parameters are unknown."""
+    if not parameters or parameters.get("Contact/Master boundary ids", "").strip():
+        return None
+    dim = int(parameters.get("Dimension", "2"))
+    model = parameters.get("Obstacle/Model", "plane")
+    if model == "plane":
+        normal = _vector(parameters["Obstacle/plane/Normal"], dim, "Obstacle/plane/Normal")
+        length = math.sqrt(sum(n * n for n in normal))
+        return {"model": "plane", "point": _vector(parameters["Obstacle/plane/Point"], dim, "Obstacle/plane/Point"),
+                "normal": [n / length for n in normal]}
+    if model == "ball":
+        return {"model": "ball", "center": _vector(parameters["Obstacle/ball/Center"], dim, "Obstacle/ball/Center"),
+                "radius": float(parameters["Obstacle/ball/Radius"])}
+    raise OutputError(f"Obstacle/Model = {model}: not an obstacle this tool knows how to draw (plane, ball)")
+
+
+def friction_law(parameters):
+    """('Coulomb', mu), ('Tresca', threshold in MPa) or None (frictionless or unknown)."""
+    model = parameters.get("Contact/Friction law/Model")
+    if model == "Coulomb":
+        mu = float(parameters.get("Contact/Friction law/Coulomb/Friction coefficient", "0"))
+        return ("Coulomb", mu) if mu > 0 else None
+    if model == "Tresca":
+        return "Tresca", float(parameters.get("Contact/Friction law/Tresca/Threshold", "0"))
+    return None
+
+
+def solution_steps(output_dir):
+    """[(step, time, file)] of solution.pvd in its order; the step is the number of the file name
+    (solution_NNNNN.pvtu), which is the load step (0: the initial state)."""
+    pvd = os.path.join(output_dir, "solution.pvd")
+    if not os.path.isfile(pvd):
+        raise OutputError(f"{pvd} not found (is {output_dir} an output directory of the program, "
+                          "run with Output/Write vtu = true?)")
+    with open(pvd) as f:
+        text = f.read()
+    steps = []
+    for time, name in re.findall(r'<DataSet[^>]*timestep="([^"]*)"[^>]*file="([^"]*)"', text):
+        match = re.search(r"_(\d+)\.p?vtu$", name)
+        steps.append((int(match.group(1)) if match else len(steps), float(time), os.path.join(output_dir, name)))
+    if not steps:
+        raise OutputError(f"{pvd} lists no step")
+    return steps
+
+
+def profile_steps(output_dir):
+    """{step: path} of the profile-NNNNN.csv files."""
+    found = {}
+    for name in os.listdir(output_dir):
+        match = re.fullmatch(r"profile-(\d+)\.csv", name)
+        if match:
+            found[int(match.group(1))] = os.path.join(output_dir, name)
+    return dict(sorted(found.items()))
+
+
+def read_csv(path):
+    """The rows of a CSV file of numbers, as dicts of floats."""
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def step_times(output_dir):
+    """{step: time} from statistics.csv ({} without it)."""
+    path = os.path.join(output_dir, "statistics.csv")
+    if not os.path.isfile(path):
+        return {}
+    return {int(row["step"]): row["time"] for row in read_csv(path)}
+
+
+def node_spacing(points):
+    """The median distance of a point (rows of a numpy array) to its nearest neighbour, over
+    at most 2000 of them, each against all, in blocks (memory stays small for 1e5 points)."""
+    import numpy as np  # here: the rest of the module needs only the standard library
+    points = np.asarray(points, dtype=float)
+    if len(points) < 2:
+        return 0.0
+    sample = np.arange(0, len(points), max(1, len(points) // 2000))
+    nearest = []
+    for block in np.array_split(sample, max(1, len(sample) // 100)):
+        distances = np.sqrt(((points[block, None, :] - points[None, :, :]) ** 2).sum(-1))
+        distances[np.arange(len(block)), block] = np.inf
+        nearest.append(distances.min(1))
+    return float(np.median(np.concatenate(nearest)))
+
+
+def describe_steps(steps):
+    """A list of step numbers in words ('steps 1 to 10')."""
+    steps = sorted(steps)
+    if not steps:
+        return "no step"
+    if len(steps) == 1:
+        return f"step {steps[0]} only"
+    if steps == list(range(steps[0], steps[-1] + 1)):
+        return f"steps {steps[0]} to {steps[-1]}"
+    return "steps " + ", ".join(map(str, steps))
+
+
+def select_steps(requested, available, where):
+    """The steps asked for (numbers, 'all' or 'last'; default the last) among `available`;
+    OutputError naming the available ones if one is not there."""
+    available = sorted(available)
+    if not available:
+        raise OutputError(f"{where} has no step")
+    chosen = []
+    for word in requested or ["last"]:
+        if word == "all":
+            chosen += available
+        elif word == "last":
+            chosen.append(available[-1])
+        else:
+            try:
+                step = int(word)
+            except ValueError:
+                raise OutputError(f"step '{word}' is not a number, 'all' or 'last'") from None
+            if step not in available:
+                raise OutputError(f"step {step} not in {where}: it has {describe_steps(available)}")
+            chosen.append(step)
+    return sorted(set(chosen))
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import tool_cli
+    tool_cli.module_help(__doc__)
