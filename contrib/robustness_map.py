@@ -26,9 +26,10 @@ any case ended in error or timeout or wrote a NaN: those are bugs, a divergence
 is not. At the end it prints the converged r_n range per r_t, the converged r_t
 range per r_n and the largest all-converged rectangle I1 x I2 of the grid.
 
-The functions (build_scene, sweep, write_csv, read_csv, draw_map, plot_map,
-convergence_bounds) can be imported by a study script: draw_map draws on a
-given axes, e.g. to put the nested and the Newton maps side by side."""
+The functions (read_scene, build_scene, run_cases, sweep, write_csv, read_csv,
+draw_map, plot_map, convergence_bounds) can be imported by a study script or
+another tool (contrib/compare.py runs its cases with run_cases): draw_map
+draws on a given axes, e.g. to put the nested and the Newton maps side by side."""
 import argparse
 import concurrent.futures
 import csv
@@ -90,10 +91,46 @@ GENERALIZED_NEWTON = "".join(nested_set(f"Nonlinear solver/{loop}/Method", "newt
                              for loop in ("Geometry loop", "Friction loop", "Status loop"))
 
 
+INCLUDE = re.compile(r"^\s*(?:include|INCLUDE)(?:\s+([^#]*?))?\s*(?:#.*)?$")
+MESH_FILE = re.compile(r"^(\s*set\s+Mesh file\s*=\s*)([^#]*?)(\s*(?:#.*)?)$")
+
+
+def read_scene(scene_path, _including=()):
+    """The text of the parameter file scene_path as a run in another directory needs it: each
+    `include` line replaced by the included file's text (looked up as the program does, as given,
+    then beside the including file) and a relative `Mesh file` made absolute (as given, then
+    beside scene_path). ValueError for a file that cannot be read or includes itself."""
+    if len(_including) > 20:
+        raise ValueError(f"more than 20 nested include statements at '{scene_path}'")
+    try:
+        with open(scene_path) as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as error:
+        raise ValueError(f"cannot read the parameter file '{scene_path}': {error}") from None
+    directory = os.path.dirname(os.path.abspath(scene_path))
+    top = os.path.dirname(os.path.abspath(_including[0])) if _including else directory
+    text = []
+    for line in lines:
+        include = INCLUDE.match(line)
+        mesh = MESH_FILE.match(line)
+        if include and include.group(1):
+            name = include.group(1)
+            if not os.path.isabs(name) and not os.path.exists(name):
+                name = os.path.join(directory, name)
+            text.append(read_scene(name, _including + (scene_path,)).rstrip("\n"))
+        elif mesh and mesh.group(2) and not os.path.isabs(mesh.group(2)):
+            name = mesh.group(2)
+            name = os.path.abspath(name if os.path.exists(name) else os.path.join(top, name))
+            text.append(mesh.group(1) + name + mesh.group(3))
+        else:
+            text.append(line)
+    return "\n".join(text) + "\n"
+
+
 def build_scene(scene_path, settings=(), algorithm="nested", max_cuts=0):
-    """The scene's parameter text with the step cuts, the algorithm and the 'Section/Entry=value' settings."""
-    with open(scene_path) as f:
-        text = f.read()
+    """The scene's parameter text (read_scene) with the step cuts, the algorithm and the
+    'Section/Entry=value' settings."""
+    text = read_scene(scene_path)
     text += nested_set("Load stepping/Maximum step cuts", max_cuts)
     if algorithm == "newton":
         text += GENERALIZED_NEWTON
@@ -252,7 +289,8 @@ def sweep(executable, scene_text, rn_values, rt_values, workdir, jobs=None, time
     return [rows[rn, rt] for _, _, rn, rt in grid]
 
 
-def write_csv(rows, path):
+def write_csv(rows, path, columns=COLUMNS):
+    """rows (dicts) as CSV with the given columns; None, or a column a row lacks, is an empty cell."""
     def text(value):
         if value is None:
             return ""
@@ -262,9 +300,9 @@ def write_csv(rows, path):
 
     with open(path, "w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(COLUMNS)
+        writer.writerow(columns)
         for row in rows:
-            writer.writerow([text(row[c]) for c in COLUMNS])
+            writer.writerow([text(row.get(c)) for c in columns])
 
 
 def read_csv(path):
