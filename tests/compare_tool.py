@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""contrib/compare.py on a tiny scene: a coarse Hertz cylinder (half ball with
+2 global refinements in the scene, one load step), pairs Q1/P1 and Q2/P1 on
+2 meshes (refinements +0 and +1), 2 runs at a time. The table (CSV and
+Markdown) has a row per choice, every run converged, the errors against
+Hertz's closed form and the runs' estimates are finite, and the L2 error of
+the pressure and of the half-width decrease with refinement for each pair;
+--target marks the cheapest choice that meets it, the one of least wall time.
+A run that fails is a failed row and exit code 1, not a crash; a bad argument
+stops the tool with exit code 2 before anything runs."""
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+tool = os.path.join(root, "contrib", "compare.py")
+shutil.rmtree(workdir, ignore_errors=True)
+os.makedirs(workdir)
+
+# the shipped Hertz cylinder, coarser (contact mesh size 2.45 mm, a ~ 10 mm) and in one load step
+with open(os.path.join(root, "prm", "hertz_cylinder.prm")) as f:
+    text = f.read()
+for old, new in (("set Global refinements      = 3", "set Global refinements      = 2"),
+                 ("set Number of load steps = 2", "set Number of load steps = 1")):
+    check(old in text, f"prm/hertz_cylinder.prm sets '{old}'")
+    text = text.replace(old, new)
+scene = os.path.join(workdir, "tiny_hertz.prm")
+with open(scene, "w") as f:
+    f.write(text)
+
+
+def run(*arguments, timeout=300):
+    result = subprocess.run([tool, scene, "--executable", executable, *arguments], capture_output=True,
+                            text=True, timeout=timeout)
+    return result.returncode, result.stdout, result.stderr
+
+
+output = os.path.join(workdir, "results")
+code, out, err = run("--pairs", "Q1/P1", "Q2/P1", "--refinements", "0", "1", "--jobs", "2", "--target", "0.07",
+                     "--workdir", os.path.join(workdir, "runs"), "--output", output)
+check(code == 0, f"exit code {code}" + (f": {out[-1500:]} {err[-1500:]}" if code else ""))
+table = os.path.join(output, "compare_tiny_hertz.csv")
+rows = []
+if os.path.exists(table):
+    with open(table, newline="") as f:
+        rows = list(csv.DictReader(f))
+choices = {(p, g) for p in ("Q1/P1", "Q2/P1") for g in ("2", "3")}
+check(len(rows) == 4 and {(r["pair"], r["global_refinements"]) for r in rows} == choices,
+      f"a row per choice: {[(r['pair'], r['global_refinements']) for r in rows]}")
+check(all(r["outcome"] == "converged" for r in rows), f"outcomes {[r['outcome'] for r in rows]}")
+measures = ("pressure_l2_error", "half_width_error", "peak_error", "estimated_relative_error")
+
+
+def finite(text):
+    try:
+        return math.isfinite(float(text))
+    except ValueError:
+        return False
+
+
+check(rows and all(finite(r[m]) and float(r[m]) >= 0 for r in rows for m in measures),
+      "errors and estimates finite: " + "; ".join(", ".join(f"{m} {r.get(m)}" for m in measures) for r in rows))
+for pair in ("Q1/P1", "Q2/P1"):
+    by_mesh = {r["global_refinements"]: r for r in rows if r["pair"] == pair}
+    if set(by_mesh) == {"2", "3"} and all(finite(r["pressure_l2_error"]) for r in by_mesh.values()):
+        for m in ("pressure_l2_error", "half_width_error", "dofs"):
+            coarse, fine = float(by_mesh["2"][m]), float(by_mesh["3"][m])
+            grows = m == "dofs"
+            check(fine > coarse if grows else fine < coarse,
+                  f"{pair}: {m} {'grows' if grows else 'decreases'} with refinement: {coarse:.4g} -> {fine:.4g}")
+meeting = [r for r in rows if r.get("meets_target") == "true"]
+marked = [r for r in rows if r.get("cheapest") == "true"]
+check(len(marked) == (1 if meeting else 0) and all(float(r["pressure_l2_error"]) <= 0.07 for r in meeting)
+      and (not marked or float(marked[0]["wall_time_s"]) == min(float(r["wall_time_s"]) for r in meeting)),
+      f"the cheapest choice meeting the target: {[(r['pair'], r['global_refinements']) for r in marked]} "
+      f"of {[(r['pair'], r['global_refinements'], r['pressure_l2_error']) for r in meeting]}")
+page = os.path.join(output, "compare_tiny_hertz.md")
+lines = open(page).read().splitlines() if os.path.exists(page) else []
+table_rows = [line for line in lines if line.startswith("| ") and not line.startswith("| #")]
+check(len(table_rows) == 4 and "contrib/compare.py" in "\n".join(lines) and "Hertz" in "\n".join(lines),
+      f"the Markdown page: {len(table_rows)} table rows, the command and the accuracy basis")
+check(os.path.getsize(os.path.join(output, "compare_tiny_hertz.png")) > 10000
+      if os.path.exists(os.path.join(output, "compare_tiny_hertz.png")) else False, "the Pareto plot")
+
+# a run that fails (one Newton iteration per load step, no cuts): a failed row, exit code 1
+code, out, err = run("--choice", "refinement=0", "--set", "Nonlinear solver/Maximum Newton iterations per load step=1",
+                     "--set", "Load stepping/Maximum step cuts=0", "--workdir", os.path.join(workdir, "failing"))
+rows = []
+failing = os.path.join(workdir, "failing", "compare_tiny_hertz.csv")
+if os.path.exists(failing):
+    with open(failing, newline="") as f:
+        rows = list(csv.DictReader(f))
+check(code == 1 and len(rows) == 1 and rows[0]["outcome"] == "diverged" and rows[0]["pressure_l2_error"] == ""
+      and "Traceback" not in err, f"a failing run: exit code {code}, rows {rows}, stderr '{err.strip()[-300:]}'")
+
+# bad arguments: exit code 2 with a message, nothing run
+for arguments, message in ((["--jobs", "0"], "--jobs"), (["--pairs", "Q9/P9"], "Q9/P9"),
+                           (["--measure", "normal_force"], "--measure"), (["--refinements", "-3"], "negative")):
+    bad = os.path.join(workdir, "bad")
+    code, out, err = run(*arguments, "--workdir", bad)
+    ran = [d for d in os.listdir(bad) if os.path.isdir(os.path.join(bad, d))] if os.path.isdir(bad) else []
+    check(code == 2 and message in err and not ran,
+          f"{' '.join(arguments)}: exit code {code}, '{(err.strip().splitlines() or [''])[-1]}', run directories {ran}")
+check.finish()
