@@ -574,7 +574,7 @@ namespace StabilizedLagrangian
       prm.declare_entry(
           "Cycles",
           "0",
-          Patterns::Integer(0, 10),
+          Patterns::Integer(0, 40),
           "Adaptive refinement: after the whole load path is solved, the mesh "
           "is refined by the `Criterion` and the load path is solved again from "
           "rest on the new mesh, this many times. The last mesh writes into the output "
@@ -603,6 +603,21 @@ namespace StabilizedLagrangian
                         "the energy norm of the last state's tangent; cycle_errors.csv gives "
                         "it beside the error estimate of that cycle and their ratio (the "
                         "effectivity index against this reference). Not with --resume.");
+      prm.declare_entry("Target error",
+                        "0",
+                        Patterns::Double(0., 1.),
+                        "Accuracy target: the cycles stop as soon as the estimated relative "
+                        "error of the last load step in the energy norm "
+                        "(estimated_relative_error) is at most this; `Cycles` is then the most "
+                        "cycles. The output directory holds the cycle that met it (the earlier "
+                        "ones in cycle-N/), target_error.csv what it cost. 0: no target.");
+      prm.declare_entry("Target pressure error",
+                        "0",
+                        Patterns::Double(0., 1.),
+                        "Accuracy target on the contact pressure: the estimated relative L2 "
+                        "error of the pressure on the contact surface (estimated_pressure_error: "
+                        "the mismatch between the stress's normal traction and the multiplier), "
+                        "as `Target error`; with both, both must be met. 0: no target.");
       prm.declare_entry("Refinement band",
                         "0.5",
                         Patterns::Double(0.),
@@ -623,9 +638,14 @@ namespace StabilizedLagrangian
                                                          {"uniform", Criterion::uniform}};
       criterion                                       = criteria.at(prm.get("Criterion"));
       errors_against_last_cycle = prm.get_bool("Errors against the last cycle");
+      target_error              = prm.get_double("Target error");
+      target_pressure_error     = prm.get_double("Target pressure error");
       band                      = prm.get_double("Refinement band");
       fraction                  = prm.get_double("Refined fraction");
       prm.leave_subsection();
+      if (targeted() && cycles == 0)
+        throw InputError("Adaptive refinement/Target error and Target pressure error need "
+                         "`Cycles` > 0: the most refinement cycles the target may take.");
     }
 
     void

@@ -102,6 +102,42 @@ if cycles and adaptive:
           f"Criterion = estimator: estimate {last['estimated_error_sqrtNmm']:.1f} with "
           f"{last['displacement_dofs']:.0f} DoFs, below uniform refinement's {uniform:.1f} at as many DoFs")
 
+# --- an accuracy target on the contact pressure -----------------------------
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
+from hertz_errors import hertz_errors  # noqa: E402
+
+target = 0.05
+out = os.path.join(workdir, "hertz_target")
+text = hertz + f"""
+subsection Adaptive refinement
+  set Cycles = 20
+  set Criterion = estimator
+  set Target pressure error = {target}
+end
+"""
+if sltest.run_checked(executable, text, out, check, "Hertz, Target pressure error"):
+    output = os.path.join(out, "output")
+    cycles = sltest.read_csv(os.path.join(output, "refinement_cycles.csv"))
+    met = sltest.read_csv(os.path.join(output, "target_error.csv"))[0]
+    estimates = [row["estimated_pressure_error"] for row in cycles]
+    check(met["met"] == 1 and estimates[-1] <= target and all(e > target for e in estimates[:-1])
+          and met["cycle"] == len(cycles) - 1,
+          f"Target {target}: the cycles stop at the first estimate below it: " +
+          ", ".join(f"{e:.4f}" for e in estimates))
+    last = len(cycles) - 1
+    check(not os.path.exists(os.path.join(output, f"cycle-{last}"))
+          and all(os.path.isdir(os.path.join(output, f"cycle-{k}")) for k in range(last))
+          and os.path.exists(os.path.join(output, "statistics.csv")),
+          "Target: the output directory holds the last cycle, the earlier ones are in cycle-N/")
+    force = sltest.read_csv(os.path.join(output, "statistics.csv"))[-1]["normal_force_N"]
+    true_error = hertz_errors(2, force, sltest.last_profile(output))["l2_error"]
+    check(target / 3 < true_error < 3 * target,
+          f"Target {target}: the true pressure error against Hertz {true_error:.4f} is within a factor 3 of it")
+code, log = sltest.run(executable, hertz + "\nsubsection Adaptive refinement\n  set Target error = 0.1\nend\n",
+                       os.path.join(workdir, "target_without_cycles"), expect_success=False)
+check(code == 1 and "Target error" in log and "Cycles" in log,
+      f"a target without Cycles: exit {code}, the message names the entries")
+
 # --- 1 and 2 ranks, a history-dependent material ---------------------------
 plastic = hertz + """
 subsection Material

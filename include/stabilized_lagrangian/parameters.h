@@ -233,6 +233,17 @@ namespace StabilizedLagrangian
       double       fraction  = 0.3; ///< Kelly, estimator: fraction of the cells refined
       /** measure each cycle's displacement against the last cycle's (cycle_errors.csv) */
       bool errors_against_last_cycle = false;
+      /** stop the cycles once the estimated relative energy error is at most this (0: off) */
+      double target_error = 0.;
+      /** ... and the estimated relative L2 error of the contact pressure (0: off) */
+      double target_pressure_error = 0.;
+
+      /** @brief Whether the cycles stop at a target rather than run them all. */
+      bool
+      targeted() const
+      {
+        return target_error > 0. || target_pressure_error > 0.;
+      }
 
       static void
       declare_parameters(ParameterHandler &prm);

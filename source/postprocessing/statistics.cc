@@ -81,6 +81,7 @@ namespace StabilizedLagrangian
       columns.push_back(field("estimated_error_sqrtNmm", &S::estimated_error, 6));
       columns.push_back(field("estimated_contact_error_sqrtNmm", &S::estimated_contact_error, 6));
       columns.push_back(field("energy_norm_sqrtNmm", &S::energy_norm, 10));
+      columns.push_back(field("estimated_pressure_error", &S::estimated_pressure_error, 6));
       columns.push_back({"estimated_relative_error", [](std::ostream &out, const StepRow &row) {
                            out << std::setprecision(6) << row.record.relative_error();
                          }});

@@ -467,8 +467,7 @@ namespace StabilizedLagrangian
     const bool         root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     if (root && cycles_bytes > 0)
       SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
-    output_parameters.directory =
-        cycle < adaptive_refinement.cycles ? base + "/cycle-" + std::to_string(cycle) : base;
+    output_parameters.directory = cycle_directory(cycle);
     statistics.resume(output_parameters.directory, dim, root, statistics_state);
     write_pvd();
     output_parameters.directory = base;

@@ -39,7 +39,7 @@ namespace StabilizedLagrangian
     Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
     double         energy = add_volume_residuals(u, squared);
     add_face_residuals(u, squared);
-    add_contact_residuals(u, contact);
+    stats.estimated_pressure_error = add_contact_residuals(u, contact);
     error_indicators.reinit(squared.size());
     double total = 0., contact_total = 0.;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -266,7 +266,7 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  void
+  double
   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &u,
                                              Vector<double>                      &contact)
   {
@@ -276,6 +276,7 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>>                  gradients;
     const bool                                   friction = friction_law->has_friction();
     std::vector<std::pair<unsigned int, double>> face_complementarity;
+    double                                       pressure_mismatch = 0., pressure_norm = 0.;
     for (const auto &face : contact_faces)
       {
         if (!face_values || &face_quadrature(face) != rule)
@@ -306,6 +307,8 @@ namespace StabilizedLagrangian
                 stress_at(face.cell, gradients[q], face_values->quadrature_point(q)) *
                 face_values->normal_vector(q);
             residual += (traction - applied).norm_square() * k.JxW;
+            pressure_mismatch += std::pow(traction * state.pairing.normal - lambda, 2) * k.JxW;
+            pressure_norm += lambda * lambda * k.JxW;
             gap_terms += (h / E * std::pow(std::max(-lambda, 0.), 2) +
                           E / h * std::pow(std::max(-gap, 0.), 2)) *
                          k.JxW;
@@ -338,28 +341,31 @@ namespace StabilizedLagrangian
     if (absolute_total > 0.)
       for (const auto &[cell, value] : face_complementarity)
         contact[cell] += std::abs(signed_total) * std::abs(value) / absolute_total;
+    pressure_mismatch = Utilities::MPI::sum(pressure_mismatch, mpi_communicator);
+    pressure_norm     = Utilities::MPI::sum(pressure_norm, mpi_communicator);
+    return pressure_norm > 0. ? std::sqrt(pressure_mismatch / pressure_norm) : 0.;
   }
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                         \
-  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                            \
-  template void   ContactProblem<dim>::share_ghost_history();                                       \
-  template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &,  \
-                                                            Vector<double> &) const;                \
-  template void   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &,    \
-                                                        Vector<double> &);                        \
-  template void   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &, \
-                                                           Vector<double> &);                     \
-  template Tensor<2, dim> ContactProblem<dim>::stress_at(                                           \
-      const typename Triangulation<dim>::cell_iterator &,                                           \
-      const Tensor<2, dim> &,                                                                       \
-      const Point<dim> &) const;                                                                    \
-  template void ContactProblem<dim>::add_boundary_residual(                                         \
-      const typename DoFHandler<dim>::active_cell_iterator &,                                       \
-      unsigned int,                                                                                 \
-      const TrilinosWrappers::MPI::Vector &,                                                        \
-      FEFaceValues<dim> &,                                                                          \
+#define SL_INSTANTIATE(dim)                                                                        \
+  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                           \
+  template void   ContactProblem<dim>::share_ghost_history();                                      \
+  template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &, \
+                                                            Vector<double> &) const;               \
+  template void   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &,   \
+                                                        Vector<double> &);                       \
+  template double ContactProblem<dim>::add_contact_residuals(                                      \
+      const TrilinosWrappers::MPI::Vector &, Vector<double> &);                                    \
+  template Tensor<2, dim> ContactProblem<dim>::stress_at(                                          \
+      const typename Triangulation<dim>::cell_iterator &,                                          \
+      const Tensor<2, dim> &,                                                                      \
+      const Point<dim> &) const;                                                                   \
+  template void ContactProblem<dim>::add_boundary_residual(                                        \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                      \
+      unsigned int,                                                                                \
+      const TrilinosWrappers::MPI::Vector &,                                                       \
+      FEFaceValues<dim> &,                                                                         \
       Vector<double> &);
 
   SL_INSTANTIATE(2)

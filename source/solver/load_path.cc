@@ -23,9 +23,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::run(const bool resume)
   {
-    const bool        root            = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    const std::string final_directory = output_parameters.directory;
-    run_directory                     = final_directory;
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    run_directory   = output_parameters.directory;
     // nothing is written before the input is known to be good: the mesh and
     // the boundary names are checked by setup()
     setup();
@@ -37,24 +36,16 @@ namespace StabilizedLagrangian
     if (resume)
       estimate_error(last_step);
     if (root)
-      SafeFiles::write_atomically(final_directory + "/parameters.prm", parameters_used);
+      SafeFiles::write_atomically(run_directory + "/parameters.prm", parameters_used);
 
     // Adaptive refinement (`Adaptive refinement/Cycles`, 0 by default): the
     // load path is solved on each mesh in turn; the last one writes into the
-    // output directory.
-    const unsigned int n_cycles    = adaptive_refinement.cycles;
-    const std::string  cycles_path = final_directory + "/refinement_cycles.csv";
-    if (root && n_cycles > 0 && !resume)
-      SafeFiles::write_atomically(cycles_path,
-                                  "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
-                                  "normal_force_N,estimated_error_sqrtNmm,estimated_relative_error,"
-                                  "wall_time_s\n");
+    // output directory. With a target, the cycles stop once it is met.
+    const unsigned int n_cycles = adaptive_refinement.cycles;
+    start_cycle_log(resume);
     const bool measure_cycles =
         adaptive_refinement.errors_against_last_cycle && n_cycles > 0 && !resume;
-    if (adaptive_refinement.errors_against_last_cycle && resume)
-      pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
-               "on a resumed run (the earlier cycles' displacements are not in the "
-               "checkpoint).\n";
+    CycleTotals totals;
     for (cycle = first_cycle; cycle <= n_cycles; ++cycle)
       {
         const bool resumed = resume && cycle == first_cycle;
@@ -65,20 +56,10 @@ namespace StabilizedLagrangian
             time = 0.;
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
           }
-        output_parameters.directory = cycle < n_cycles
-                                          ? final_directory + "/cycle-" + std::to_string(cycle)
-                                          : final_directory;
+        output_parameters.directory = cycle_directory(cycle);
         Timer      cycle_clock;
         const bool converged = solve_load_path(resumed);
-        if (root && n_cycles > 0)
-          {
-            std::ostringstream row;
-            row << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
-                << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
-                << std::setprecision(10) << last_normal_force << ',' << last_step.estimated_error
-                << ',' << last_step.relative_error() << ',' << cycle_clock.wall_time() << '\n';
-            SafeFiles::append(cycles_path, row.str());
-          }
+        record_cycle(cycle_clock.wall_time(), totals);
         if (!converged)
           return false;
         if (measure_cycles)
@@ -86,10 +67,108 @@ namespace StabilizedLagrangian
             earlier_cycles.push_back(ghosted_displacement());
             cycle_records.emplace_back(n_u, last_step.estimated_error);
           }
+        if (adaptive_refinement.targeted() && targets_met())
+          break;
       }
     if (measure_cycles)
-      write_cycle_errors(final_directory);
+      write_cycle_errors(run_directory);
+    if (adaptive_refinement.targeted())
+      finish_targeted_cycles(std::min(cycle, n_cycles), totals);
     return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::start_cycle_log(const bool resume) const
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0 && adaptive_refinement.cycles > 0 &&
+        !resume)
+      SafeFiles::write_atomically(run_directory + "/refinement_cycles.csv",
+                                  "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
+                                  "normal_force_N,estimated_error_sqrtNmm,estimated_relative_error,"
+                                  "estimated_pressure_error,wall_time_s\n");
+    if (adaptive_refinement.errors_against_last_cycle && resume)
+      pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
+               "on a resumed run (the earlier cycles' displacements are not in the "
+               "checkpoint).\n";
+  }
+
+  template <int dim>
+  std::string
+  ContactProblem<dim>::cycle_directory(const unsigned int k) const
+  {
+    // with a target, which cycle is the last is known only once it is solved
+    // (finish_targeted_cycles() moves its output up)
+    const bool last = k == adaptive_refinement.cycles && !adaptive_refinement.targeted();
+    return last ? run_directory : run_directory + "/cycle-" + std::to_string(k);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::record_cycle(const double wall_time, CycleTotals &totals) const
+  {
+    totals.wall_time += wall_time;
+    totals.newton_iterations += statistics.cumulative_newton_iterations();
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || adaptive_refinement.cycles == 0)
+      return;
+    std::ostringstream row;
+    row << cycle << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
+        << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
+        << std::setprecision(10) << last_normal_force << ',' << last_step.estimated_error << ','
+        << last_step.relative_error() << ',' << last_step.estimated_pressure_error << ','
+        << wall_time << '\n';
+    SafeFiles::append(run_directory + "/refinement_cycles.csv", row.str());
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::targets_met() const
+  {
+    const auto met = [](const double target, const double estimate) {
+      return target == 0. || estimate <= target;
+    };
+    return met(adaptive_refinement.target_error, last_step.relative_error()) &&
+           met(adaptive_refinement.target_pressure_error, last_step.estimated_pressure_error);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::finish_targeted_cycles(const unsigned int last, const CycleTotals &totals)
+  {
+    const bool met = targets_met();
+    // the output directory holds the last cycle's output, as without a target
+    const std::string from = cycle_directory(last);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        for (const auto &entry : std::filesystem::directory_iterator(from))
+          std::filesystem::rename(entry.path(),
+                                  run_directory + "/" + entry.path().filename().string());
+        std::filesystem::remove(from);
+      }
+    output_parameters.directory = run_directory;
+    std::ostringstream report;
+    report << "Accuracy target " << (met ? "met" : "NOT met") << " at cycle " << last << " of "
+           << adaptive_refinement.cycles << ": " << triangulation.n_global_active_cells()
+           << " cells, " << n_u << " displacement DoFs; estimated relative error "
+           << std::setprecision(3) << last_step.relative_error() << " (target "
+           << adaptive_refinement.target_error << "), pressure "
+           << last_step.estimated_pressure_error << " (target "
+           << adaptive_refinement.target_pressure_error << "); the cycles took " << std::fixed
+           << std::setprecision(1) << totals.wall_time << " s and " << totals.newton_iterations
+           << " Newton iterations in all\n";
+    pcout << (met ? "" : "WARNING: ") << report.str();
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ostringstream file;
+    file << "target_error,target_pressure_error,met,cycle,cells,displacement_dofs,"
+            "multiplier_dofs,estimated_relative_error,estimated_pressure_error,"
+            "newton_iterations,wall_time_s\n"
+         << adaptive_refinement.target_error << ',' << adaptive_refinement.target_pressure_error
+         << ',' << (met ? 1 : 0) << ',' << last << ',' << triangulation.n_global_active_cells()
+         << ',' << n_u << ',' << n_multipliers << ',' << std::setprecision(8)
+         << last_step.relative_error() << ',' << last_step.estimated_pressure_error << ','
+         << totals.newton_iterations << ',' << totals.wall_time << '\n';
+    SafeFiles::write_atomically(run_directory + "/target_error.csv", file.str());
   }
 
   namespace
@@ -480,7 +559,12 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                        \
-  template bool ContactProblem<dim>::run(bool);                                                    \
+  template bool        ContactProblem<dim>::run(bool);                                             \
+  template void        ContactProblem<dim>::start_cycle_log(bool) const;                           \
+  template std::string ContactProblem<dim>::cycle_directory(unsigned int) const;                   \
+  template void        ContactProblem<dim>::record_cycle(double, CycleTotals &) const;             \
+  template bool        ContactProblem<dim>::targets_met() const;                                   \
+  template void ContactProblem<dim>::finish_targeted_cycles(unsigned int, const CycleTotals &);    \
   template bool ContactProblem<dim>::solve_load_path(bool);                                        \
   template void ContactProblem<dim>::StepSnapshot::save(const ContactProblem<dim> &);              \
   template void ContactProblem<dim>::StepSnapshot::restore(ContactProblem<dim> &) const;           \

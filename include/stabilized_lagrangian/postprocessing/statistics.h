@@ -58,6 +58,12 @@ namespace StabilizedLagrangian
     double estimated_error = 0.;
     /** its contact part η_C (√(N mm)) */
     double estimated_contact_error = 0.;
+    /**
+     * the relative L2 mismatch on Γc between the normal traction of the
+     * stress and the contact pressure, ‖P N·n − λ_n‖ / ‖λ_n‖: an estimate of
+     * the relative L2 error of the pressure (doc/formulation.md)
+     */
+    double estimated_pressure_error = 0.;
     /** the energy norm of the solution, (∫ P:∇u)^½ (√(N mm)) */
     double energy_norm = 0.;
     /** @brief η against the energy norm of the solution (0 for an undeformed body). */

@@ -325,6 +325,34 @@ namespace StabilizedLagrangian
     };
 
     // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
+    /** What the refinement cycles took in all (an accuracy target reports it). */
+    struct CycleTotals
+    {
+      double        wall_time         = 0.;
+      unsigned long newton_iterations = 0;
+    };
+    /** Start refinement_cycles.csv (a fresh run with cycles). */
+    void
+    start_cycle_log(const bool resume) const;
+    /**
+     * The output directory of cycle @p k: the run's for the last cycle, else
+     * cycle-k/ below it (with an accuracy target every cycle's, until
+     * finish_targeted_cycles()).
+     */
+    std::string
+    cycle_directory(const unsigned int k) const;
+    /** Add the cycle to @p totals and its row to refinement_cycles.csv. */
+    void
+    record_cycle(const double wall_time, CycleTotals &totals) const;
+    /** Whether the last load step's estimates meet the accuracy targets. */
+    bool
+    targets_met() const;
+    /**
+     * After the cycles of an accuracy target: move the output of cycle @p last
+     * into the run's directory, report the cost and write target_error.csv.
+     */
+    void
+    finish_targeted_cycles(const unsigned int last, const CycleTotals &totals);
     /**
      * The whole load path on the current mesh, from rest, or with @p resumed
      * from the state a checkpoint restored.
@@ -906,8 +934,11 @@ namespace StabilizedLagrangian
                           const TrilinosWrappers::MPI::Vector                  &u,
                           FEFaceValues<dim>                                    &face_values,
                           Vector<double>                                       &squared);
-    /** Add the contact terms of the faces of Γc to @p contact. */
-    void
+    /**
+     * Add the contact terms of the faces of Γc to @p contact; return the
+     * relative mismatch ‖P N·n − λ_n‖ / ‖λ_n‖ on Γc (the pressure estimate).
+     */
+    double
     add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact);
 
     // --- output.cc ---
