@@ -111,7 +111,6 @@ namespace StabilizedLagrangian
     FEValues<dim>                    fe_values(*fe_u, cell_quadrature, update_gradients);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
-    std::vector<double>              scratch;
     const double                     weight = 1. / cell_quadrature.size();
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -124,10 +123,8 @@ namespace StabilizedLagrangian
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
-              const auto history = material_history.committed(index, q);
-              scratch.resize(history.size());
-              const auto response =
-                  material.evaluate(gradients[q], history, make_array_view(scratch));
+              const auto history  = material_history.committed(index, q);
+              const auto response = committed_response(cell, q, gradients[q]);
               cell_stress[index] +=
                   weight *
                   Materials::cauchy_stress(gradients[q], response, material.is_finite_strain());

@@ -86,22 +86,18 @@ namespace StabilizedLagrangian
                                  const Tensor<2, dim>                             &grad_u,
                                  const Point<dim>                                 &point) const
   {
-    const Materials::Interface<dim> &material = material_of(cell);
-    std::vector<double>              scratch(material.n_history());
-    ArrayView<const double>          history;
-    if (material.n_history() > 0)
+    // the history lives at the cell's quadrature points: the nearest one's
+    unsigned int nearest = 0;
+    if (material_of(cell).n_history() > 0)
       {
-        // the history lives at the cell's quadrature points: the nearest one's
         const Point<dim> unit =
             StaticMappingQ1<dim>::mapping.transform_real_to_unit_cell(cell, point);
-        unsigned int nearest = 0;
         for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
           if (cell_quadrature.point(q).distance(unit) <
               cell_quadrature.point(nearest).distance(unit))
             nearest = q;
-        history = material_history.committed(cell->active_cell_index(), nearest);
       }
-    return material.evaluate(grad_u, history, make_array_view(scratch)).stress;
+    return committed_response(cell, nearest, grad_u).stress;
   }
 
   template <int dim>
@@ -114,7 +110,6 @@ namespace StabilizedLagrangian
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
     std::vector<Tensor<3, dim>>      hessians(cell_quadrature.size());
-    std::vector<double>              scratch;
     double                           energy = 0.;
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -126,10 +121,7 @@ namespace StabilizedLagrangian
           double                           residual = 0.;
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
-              const auto history = material_history.committed(cell->active_cell_index(), q);
-              scratch.resize(history.size());
-              const auto response =
-                  material.evaluate(gradients[q], history, make_array_view(scratch));
+              const auto response = committed_response(cell, q, gradients[q]);
               // div P = A : ∇∇u (A = ∂P/∂F), no body force
               Tensor<1, dim> divergence;
               for (unsigned int i = 0; i < dim; ++i)

@@ -422,15 +422,22 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
+  std::map<std::string, double>
+  ContactProblem<dim>::slowest_sections() const
+  {
+    std::map<std::string, double> slowest;
+    for (const auto &[section, seconds] : timer.get_summary_data(TimerOutput::total_wall_time))
+      slowest[section] = Utilities::MPI::max(seconds, mpi_communicator);
+    return slowest;
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::print_run_summary(const unsigned int n_steps, const double wall_time) const
   {
-    // the slowest rank's time per phase, as in run_summary.csv
-    std::map<std::string, double> sections;
-    for (const auto &[section, seconds] : timer.get_summary_data(TimerOutput::total_wall_time))
-      sections[section] = Utilities::MPI::max(seconds, mpi_communicator);
-    const double       memory = peak_memory();
-    std::ostringstream block;
+    const std::map<std::string, double> sections = slowest_sections();
+    const double                        memory   = peak_memory();
+    std::ostringstream                  block;
     block << std::fixed << std::setprecision(2) << "Run summary\n"
           << "  mesh:       " << triangulation.n_global_active_cells() << " cells, " << n_u
           << " displacement + " << n_multipliers << " multiplier DoFs, "
@@ -476,13 +483,9 @@ namespace StabilizedLagrangian
                                          const double        wall_time,
                                          const WorkCounters &path_work) const
   {
-    // the slowest rank's time per phase
-    const std::map<std::string, double> times =
-        timer.get_summary_data(TimerOutput::total_wall_time);
-    const double                  memory = peak_memory(); // collective
-    std::map<std::string, double> slowest;
-    for (const auto &[section, seconds] : times)
-      slowest[section] = Utilities::MPI::max(seconds, mpi_communicator);
+    // collective, before rank 0 alone writes
+    const std::map<std::string, double> slowest = slowest_sections();
+    const double                        memory  = peak_memory();
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
@@ -578,7 +581,8 @@ namespace StabilizedLagrangian
                                                       const PathLog &);                    \
   template WorkCounters ContactProblem<dim>::work_on_path() const;                                 \
   template double       ContactProblem<dim>::peak_memory() const;                                  \
-  template void         ContactProblem<dim>::print_run_summary(unsigned int, double) const;        \
+  template std::map<std::string, double> ContactProblem<dim>::slowest_sections() const;            \
+  template void ContactProblem<dim>::print_run_summary(unsigned int, double) const;                \
   template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
       const;                                                                                       \
   template void ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;        \

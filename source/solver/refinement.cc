@@ -186,20 +186,15 @@ namespace StabilizedLagrangian
     const FEValuesExtractors::Vector displacement(0);
     const unsigned int               n_q = cell_quadrature.size();
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
-    std::vector<double>              squared(earlier_cycles.size(), 0.), scratch;
+    std::vector<double>              squared(earlier_cycles.size(), 0.);
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(earlier_cycles.back(), last);
-          const Materials::Interface<dim> &material = material_of(cell);
-          std::vector<Tensor<4, dim>>      tangents(n_q);
+          std::vector<Tensor<4, dim>> tangents(n_q);
           for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const auto history = material_history.committed(cell->active_cell_index(), q);
-              scratch.resize(history.size());
-              tangents[q] = material.evaluate(last[q], history, make_array_view(scratch)).tangent;
-            }
+            tangents[q] = committed_response(cell, q, last[q]).tangent;
           for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
             {
               fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);

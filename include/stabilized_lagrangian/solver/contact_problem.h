@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <map>
 
 namespace StabilizedLagrangian
 {
@@ -434,6 +435,9 @@ namespace StabilizedLagrangian
      */
     void
     print_run_summary(const unsigned int n_steps, const double wall_time) const;
+    /** Collective: the wall time of each timer section on the slowest rank (s). */
+    std::map<std::string, double>
+    slowest_sections() const;
     /** Collective: the largest peak resident memory of the ranks (MiB). */
     double
     peak_memory() const;
@@ -837,6 +841,21 @@ namespace StabilizedLagrangian
     {
       const auto slot = material_slots.find(cell->material_id());
       return *materials[slot == material_slots.end() ? 0 : slot->second].model;
+    }
+    /**
+     * The response of @p cell's material at its quadrature point @p q for
+     * @p grad_u, from the committed history (that of the last converged
+     * state); the updated history is discarded. For the output and the
+     * error estimate, never the assembly.
+     */
+    Materials::Response<dim>
+    committed_response(const typename Triangulation<dim>::cell_iterator &cell,
+                       const unsigned int                                q,
+                       const Tensor<2, dim>                             &grad_u) const
+    {
+      const auto          history = material_history.committed(cell->active_cell_index(), q);
+      std::vector<double> discarded(history.size());
+      return material_of(cell).evaluate(grad_u, history, make_array_view(discarded));
     }
     void
     assemble_volume(const bool assemble_matrix);
