@@ -14,8 +14,11 @@ Checks:
   3;
 - `Criterion = estimator` refines where the estimate is largest: the estimate
   falls below that of uniform refinement with fewer DoFs;
+- the pressure estimate is zero for the uniform pressure, and within a
+  factor 2 of the true error against Hertz on the uniform and the graded
+  meshes;
 - on 2 MPI ranks a J2 plastic body (history carried to the ghost cells) has
-  the 1-rank estimate to 1e-8;
+  the 1-rank estimates (energy and pressure) to 1e-8;
 - the VTU carries the cell field error_indicator_sqrtNmm, finite and not all
   zero; statistics.csv and run_summary.csv carry the estimate.
 """
@@ -23,6 +26,9 @@ import math
 import os
 import sys
 import sltest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
+from hertz_errors import hertz_errors  # noqa: E402
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
@@ -44,6 +50,9 @@ for dim, pair, local in ((2, "Q1/P1", 2), (2, "Q2/P1", 1), (3, "Q1/P1", 0)):
         check(row["energy_norm_sqrtNmm"] > 0 and row["estimated_relative_error"] < 1e-6,
               f"{name}: estimate {row['estimated_relative_error']:.1e} of the energy norm "
               f"{row['energy_norm_sqrtNmm']:.3f} sqrt(N mm) (exact solution)")
+        check(row["estimated_pressure_error"] < 1e-6,
+              f"{name}: pressure estimate {row['estimated_pressure_error']:.1e} (the recovered "
+              "stress is exact for a uniform one)")
 
 # --- Hertz: decrease and effectivity ---------------------------------------
 prm_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm")
@@ -90,6 +99,30 @@ if cycles:
           "run_summary.csv: the last cycle's estimate and the peak memory")
 
 adaptive, _ = hertz_cycles("hertz_estimator", "estimator", 3, fraction=0.2)
+
+
+def pressure_effectivity(name, rows):
+    """Each cycle's pressure estimate against its true error (Hertz, the run's force)."""
+    output = os.path.join(workdir, name, "output")
+    ratios = []
+    for row in rows:
+        where = os.path.join(output, f"cycle-{int(row['cycle'])}")
+        where = where if os.path.isdir(where) else output
+        force = sltest.read_csv(os.path.join(where, "statistics.csv"))[-1]["normal_force_N"]
+        true_error = hertz_errors(2, force, sltest.last_profile(where))["surface_l2_error"]
+        ratios.append(row["estimated_pressure_error"] / true_error)
+    return ratios
+
+
+# the recovered pressure is one order more accurate than lambda_n, so the
+# estimate tends to the error (measured 0.85-1.6 over 14 graded meshes,
+# doc/error_estimator.md); the one-sided traction it replaced gave 3-6 here
+for name, rows in (("hertz_uniform", cycles), ("hertz_estimator", adaptive)):
+    if rows:
+        ratios = pressure_effectivity(name, rows)
+        check(all(0.5 < r < 2 for r in ratios),
+              f"{name}: the pressure estimate against the true error within a factor 2: "
+              + ", ".join(f"{r:.2f}" for r in ratios))
 if cycles and adaptive:
     # the uniform curve interpolated at the adaptive mesh's DoFs (log-log)
     last = adaptive[-1]
@@ -103,8 +136,6 @@ if cycles and adaptive:
           f"{last['displacement_dofs']:.0f} DoFs, below uniform refinement's {uniform:.1f} at as many DoFs")
 
 # --- an accuracy target on the contact pressure -----------------------------
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
-from hertz_errors import hertz_errors  # noqa: E402
 
 target = 0.05
 out = os.path.join(workdir, "hertz_target")
@@ -163,9 +194,9 @@ for ranks in (1, 2):
     else:
         print(log[-2000:])
 if len(results) == 2:
-    worst = max(abs(a["estimated_error_sqrtNmm"] - b["estimated_error_sqrtNmm"]) / a["estimated_error_sqrtNmm"]
-                for a, b in zip(results[1], results[2]))
-    check(worst < 1e-8, f"J2 Hertz: the estimate on 2 ranks equals 1 rank's (largest difference {worst:.1e})")
+    for column in ("estimated_error_sqrtNmm", "estimated_pressure_error"):
+        worst = max(abs(a[column] - b[column]) / a[column] for a, b in zip(results[1], results[2]))
+        check(worst < 1e-8, f"J2 Hertz: {column} on 2 ranks equals 1 rank's (largest difference {worst:.1e})")
     log_has_plasticity = max(r["estimated_error_sqrtNmm"] for r in results[1]) > 0
     check(log_has_plasticity, "J2 Hertz: a non-zero estimate")
 

@@ -1,8 +1,10 @@
 // Helpers shared by the unit tests of the material models: ok/FAIL
-// reporting, random displacement gradients and rotations, and central
+// reporting (check_tools.h), random displacement gradients and rotations, and central
 // differences of the stress.
 
 #pragma once
+
+#include "check_tools.h"
 
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/materials/tensor_functions.h>
@@ -19,31 +21,7 @@ namespace MaterialTestTools
   using namespace dealii;
   using namespace StabilizedLagrangian;
 
-  /** Number of failed checks so far. */
-  inline int failures = 0;
-
-  /** Print an ok/FAIL line and count a failure. */
-  inline void
-  check(const bool ok, const std::string &what, const double value)
-  {
-    std::cout << (ok ? "ok    " : "FAIL  ") << what << ": " << value << std::endl;
-    failures += !ok;
-  }
-
-  /** check() that an error is below its tolerance, printing the error. */
-  inline void
-  check_below(const double error, const double tolerance, const std::string &what)
-  {
-    check(error < tolerance, what, error);
-  }
-
-  /** Print the closing line and return the exit code of the test. */
-  inline int
-  summary()
-  {
-    std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
-    return failures ? EXIT_FAILURE : EXIT_SUCCESS;
-  }
+  using namespace CheckTools;
 
   /** Tensor with components uniform in [−size, size]. */
   template <int dim>

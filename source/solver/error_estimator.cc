@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/fe_interface_values.h>
 #include <deal.II/fe/fe_values.h>
@@ -6,8 +7,10 @@
 
 #include <deal.II/grid/grid_tools.h>
 
+#include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/stress_recovery.h>
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +42,8 @@ namespace StabilizedLagrangian
     Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
     double         energy = add_volume_residuals(u, squared);
     add_face_residuals(u, squared);
-    stats.estimated_pressure_error = add_contact_residuals(u, contact);
+    add_contact_residuals(u, contact);
+    stats.estimated_pressure_error = pressure_estimate(u);
     error_indicators.reinit(squared.size());
     double total = 0., contact_total = 0.;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -258,7 +262,7 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  double
+  void
   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &u,
                                              Vector<double>                      &contact)
   {
@@ -268,7 +272,6 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>>                  gradients;
     const bool                                   friction = friction_law->has_friction();
     std::vector<std::pair<unsigned int, double>> face_complementarity;
-    double                                       pressure_mismatch = 0., pressure_norm = 0.;
     for (const auto &face : contact_faces)
       {
         if (!face_values || &face_quadrature(face) != rule)
@@ -299,8 +302,6 @@ namespace StabilizedLagrangian
                 stress_at(face.cell, gradients[q], face_values->quadrature_point(q)) *
                 face_values->normal_vector(q);
             residual += (traction - applied).norm_square() * k.JxW;
-            pressure_mismatch += std::pow(traction * state.pairing.normal - lambda, 2) * k.JxW;
-            pressure_norm += lambda * lambda * k.JxW;
             gap_terms += (h / E * std::pow(std::max(-lambda, 0.), 2) +
                           E / h * std::pow(std::max(-gap, 0.), 2)) *
                          k.JxW;
@@ -333,31 +334,142 @@ namespace StabilizedLagrangian
     if (absolute_total > 0.)
       for (const auto &[cell, value] : face_complementarity)
         contact[cell] += std::abs(signed_total) * std::abs(value) / absolute_total;
-    pressure_mismatch = Utilities::MPI::sum(pressure_mismatch, mpi_communicator);
-    pressure_norm     = Utilities::MPI::sum(pressure_norm, mpi_communicator);
-    return pressure_norm > 0. ? std::sqrt(pressure_mismatch / pressure_norm) : 0.;
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const
+  {
+    // ‖p* − λ_n‖ / ‖λ_n‖ on Γc, p* = −N·P*N from the recovered stress P*,
+    // with a Gauss rule two orders above the pair's on each face: between
+    // the nodes is where a linear λ_n departs most from a curved pressure
+    const QGauss<dim - 1> rule(fe_u->degree + 2);
+    FaceEvaluator         evaluator(*this, rule, false);
+    FEFaceValues<dim> face_values(*fe_u, rule, update_normal_vectors | update_quadrature_points);
+    const QGauss<dim> barlow(fe_u->degree);
+    FEValues<dim>     barlow_values(*fe_u, barlow, update_gradients | update_quadrature_points);
+    std::vector<Tensor<2, dim>> gradients(barlow.size());
+    StressRecovery<dim>         recovery(dof_handler_u, fe_u->degree, [&](const auto &cell) {
+      barlow_values.reinit(cell);
+      barlow_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
+      std::vector<std::pair<Point<dim>, Tensor<2, dim>>> samples;
+      for (unsigned int q = 0; q < barlow.size(); ++q)
+        {
+          const Point<dim> &x = barlow_values.quadrature_point(q);
+          samples.emplace_back(x, stress_at(cell, gradients[q], x));
+        }
+      return samples;
+    });
+    // the faces that hold the end of the contact zone: the square-root onset
+    // fitted to their contact points, integrated finely across its kink
+    FaceEvaluator            nodes(*this, contact_quadrature);
+    const QIterated<dim - 1> edge_rule(QGauss<1>(2), dim == 2 ? 16 : 8);
+    FaceEvaluator            edge_evaluator(*this, edge_rule, false);
+    FEFaceValues<dim>        edge_values(*fe_u, edge_rule, update_quadrature_points);
+    const double             master_compliance = deformable_master_compliance();
+    double                   mismatch = 0., norm = 0.;
+    for (const auto &face : contact_faces)
+      {
+        const unsigned int      n_points = face_quadrature(face).size();
+        std::vector<Point<dim>> points(n_points);
+        std::vector<bool>       in_contact(n_points);
+        std::vector<double>     pressures(n_points), gaps(n_points);
+        bool                    deformable = false;
+        nodes.reinit(face, ghosted_solution);
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            const ContactPointState<dim> &state = contact_states[face.first_point + q];
+            const ContactKinematics<dim>  k     = nodes.kinematics(q);
+            points[q]                           = k.position - k.displacement;
+            in_contact[q]                       = state.in_contact;
+            pressures[q]                        = k.contact_pressure;
+            gaps[q]                             = state.pairing.gap(k.position);
+            deformable                          = deformable || state.pairing.master_face >= 0;
+          }
+        face_values.reinit(face.cell, face.face_no);
+        Tensor<1, dim> normal;
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          normal += face_values.normal_vector(q);
+        normal /= normal.norm();
+        const Materials::Interface<dim> &material = material_of(face.cell);
+        const double                     compliance =
+            (1. - std::pow(material.poissons_ratio(), 2)) / material.youngs_modulus() +
+            (deformable ? master_compliance : 0.);
+        const Contact::SquareRootOnset<dim> onset(
+            points, in_contact, pressures, gaps, normal, 1. / compliance);
+        if (onset.valid())
+          {
+            edge_values.reinit(face.cell, face.face_no);
+            edge_evaluator.reinit(face, ghosted_solution);
+            for (unsigned int q = 0; q < edge_rule.size(); ++q)
+              {
+                const ContactKinematics<dim> k = edge_evaluator.kinematics(q);
+                mismatch +=
+                    std::pow(onset.pressure(edge_values.quadrature_point(q)) - k.contact_pressure,
+                             2) *
+                    k.JxW;
+                norm += k.contact_pressure * k.contact_pressure * k.JxW;
+              }
+            continue;
+          }
+        evaluator.reinit(face, ghosted_solution);
+        const auto recovered =
+            recovery.at(face.cell, face.face_no, normal, face_values.get_quadrature_points());
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          {
+            const ContactKinematics<dim> k = evaluator.kinematics(q);
+            const Tensor<1, dim>        &N = face_values.normal_vector(q);
+            mismatch += std::pow(-(recovered[q] * N) * N - k.contact_pressure, 2) * k.JxW;
+            norm += k.contact_pressure * k.contact_pressure * k.JxW;
+          }
+      }
+    mismatch = Utilities::MPI::sum(mismatch, mpi_communicator);
+    norm     = Utilities::MPI::sum(norm, mpi_communicator);
+    return norm > 0. ? std::sqrt(mismatch / norm) : 0.;
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::deformable_master_compliance() const
+  {
+    // (1 − ν²)/E of the body that holds the master surface, 0 without one
+    double compliance = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0)
+            {
+              const Materials::Interface<dim> &material = material_of(cell);
+              compliance                                = std::max(compliance,
+                                    (1. - std::pow(material.poissons_ratio(), 2)) /
+                                        material.youngs_modulus());
+            }
+    return Utilities::MPI::max(compliance, mpi_communicator);
   }
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                        \
-  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                           \
-  template void   ContactProblem<dim>::share_ghost_history();                                      \
-  template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &, \
-                                                            Vector<double> &) const;               \
-  template void   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &,   \
-                                                        Vector<double> &);                       \
-  template double ContactProblem<dim>::add_contact_residuals(                                      \
-      const TrilinosWrappers::MPI::Vector &, Vector<double> &);                                    \
-  template Tensor<2, dim> ContactProblem<dim>::stress_at(                                          \
-      const typename Triangulation<dim>::cell_iterator &,                                          \
-      const Tensor<2, dim> &,                                                                      \
-      const Point<dim> &) const;                                                                   \
-  template void ContactProblem<dim>::add_boundary_residual(                                        \
-      const typename DoFHandler<dim>::active_cell_iterator &,                                      \
-      unsigned int,                                                                                \
-      const TrilinosWrappers::MPI::Vector &,                                                       \
-      FEFaceValues<dim> &,                                                                         \
+#define SL_INSTANTIATE(dim)                                                                         \
+  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                            \
+  template void   ContactProblem<dim>::share_ghost_history();                                       \
+  template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &,  \
+                                                            Vector<double> &) const;                \
+  template void   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &,    \
+                                                        Vector<double> &);                        \
+  template void   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &, \
+                                                           Vector<double> &);                     \
+  template double ContactProblem<dim>::pressure_estimate(const TrilinosWrappers::MPI::Vector &)     \
+      const;                                                                                        \
+  template Tensor<2, dim> ContactProblem<dim>::stress_at(                                           \
+      const typename Triangulation<dim>::cell_iterator &,                                           \
+      const Tensor<2, dim> &,                                                                       \
+      const Point<dim> &) const;                                                                    \
+  template void ContactProblem<dim>::add_boundary_residual(                                         \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                       \
+      unsigned int,                                                                                 \
+      const TrilinosWrappers::MPI::Vector &,                                                        \
+      FEFaceValues<dim> &,                                                                          \
       Vector<double> &);
 
   SL_INSTANTIATE(2)

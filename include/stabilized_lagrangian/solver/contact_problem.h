@@ -953,12 +953,18 @@ namespace StabilizedLagrangian
                           const TrilinosWrappers::MPI::Vector                  &u,
                           FEFaceValues<dim>                                    &face_values,
                           Vector<double>                                       &squared);
+    /** Add the contact terms of the faces of Γc to @p contact. */
+    void
+    add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact);
     /**
-     * Add the contact terms of the faces of Γc to @p contact; return the
-     * relative mismatch ‖P N·n − λ_n‖ / ‖λ_n‖ on Γc (the pressure estimate).
+     * The pressure estimate: the relative L2 mismatch on Γc between the normal
+     * traction of the recovered stress (StressRecovery) and λ_n.
      */
     double
-    add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact);
+    pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const;
+    /** (1 − ν²)/E of the body holding a deformable master surface; 0 without one. */
+    double
+    deformable_master_compliance() const;
 
     // --- output.cc ---
     void

@@ -1,0 +1,36 @@
+// ok/FAIL reporting shared by the unit tests.
+
+#pragma once
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+namespace CheckTools
+{
+  /** Number of failed checks so far. */
+  inline int failures = 0;
+
+  /** Print an ok/FAIL line and count a failure. */
+  inline void
+  check(const bool ok, const std::string &what, const double value)
+  {
+    std::cout << (ok ? "ok    " : "FAIL  ") << what << ": " << value << std::endl;
+    failures += !ok;
+  }
+
+  /** check() that an error is below its tolerance, printing the error. */
+  inline void
+  check_below(const double error, const double tolerance, const std::string &what)
+  {
+    check(error < tolerance, what, error);
+  }
+
+  /** Print the closing line and return the exit code of the test. */
+  inline int
+  summary()
+  {
+    std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
+    return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  }
+} // namespace CheckTools
