@@ -574,7 +574,7 @@ namespace StabilizedLagrangian
       prm.declare_entry(
           "Cycles",
           "0",
-          Patterns::Integer(0, 40),
+          Patterns::Integer(0, 60),
           "Adaptive refinement: after the whole load path is solved, the mesh "
           "is refined by the `Criterion` and the load path is solved again from "
           "rest on the new mesh, this many times. The last mesh writes into the output "
@@ -594,7 +594,19 @@ namespace StabilizedLagrangian
       prm.declare_entry("Refined fraction",
                         "0.3",
                         Patterns::Double(0., 1.),
-                        "Kelly, estimator: fraction of the cells refined at each cycle.");
+                        "Kelly, estimator: with `Marking = fixed number`, the fraction of the "
+                        "cells refined at each cycle; with `bulk`, the fraction of the sum of "
+                        "the squared indicators that the refined cells carry.");
+      prm.declare_entry("Marking",
+                        "fixed number",
+                        Patterns::Selection("fixed number|bulk"),
+                        "Kelly, estimator: which cells the indicators refine. fixed number: "
+                        "the `Refined fraction` of the cells with the largest indicators; "
+                        "bulk: the fewest cells whose squared indicators make up the `Refined "
+                        "fraction` of their sum (Doerfler marking, which the convergence of "
+                        "adaptive finite elements rests on; it refines only where the error "
+                        "concentrates, with smaller steps and more cycles: "
+                        "doc/error_estimator.md).");
       prm.declare_entry("Errors against the last cycle",
                         "false",
                         Patterns::Bool(),
@@ -616,8 +628,10 @@ namespace StabilizedLagrangian
                         Patterns::Double(0., 1.),
                         "Accuracy target on the contact pressure: the estimated relative L2 "
                         "error of the pressure on the contact surface (estimated_pressure_error: "
-                        "the mismatch between the stress's normal traction and the multiplier), "
-                        "as `Target error`; with both, both must be met. 0: no target.");
+                        "the mismatch between the multiplier and the pressure recovered from "
+                        "the stress and, where the contact zone ends, from a square-root onset; "
+                        "doc/formulation.md, \"Error estimate\"), as `Target error`; with "
+                        "both, both must be met. 0: no target.");
       prm.declare_entry("Refinement band",
                         "0.5",
                         Patterns::Double(0.),
@@ -642,6 +656,7 @@ namespace StabilizedLagrangian
       target_pressure_error     = prm.get_double("Target pressure error");
       band                      = prm.get_double("Refinement band");
       fraction                  = prm.get_double("Refined fraction");
+      bulk_marking              = prm.get("Marking") == "bulk";
       prm.leave_subsection();
       if (targeted() && cycles == 0)
         throw InputError("Adaptive refinement/Target error and Target pressure error need "

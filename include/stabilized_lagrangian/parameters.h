@@ -231,6 +231,8 @@ namespace StabilizedLagrangian
       Criterion    criterion = Criterion::active_set;
       double       band      = 0.5; ///< width of the refined band, in active-zone sizes
       double       fraction  = 0.3; ///< Kelly, estimator: fraction of the cells refined
+      /** Kelly, estimator: `fraction` is that of the squared indicators' sum (Dörfler) */
+      bool bulk_marking = false;
       /** measure each cycle's displacement against the last cycle's (cycle_errors.csv) */
       bool errors_against_last_cycle = false;
       /** stop the cycles once the estimated relative energy error is at most this (0: off) */

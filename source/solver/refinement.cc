@@ -12,6 +12,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
 #include <deal.II/numerics/rtree.h>
 
 #include <stabilized_lagrangian/contact/friction_law_check.h>
@@ -91,6 +92,18 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::mark_for_refinement(const Vector<float> &indicators)
+  {
+    if (adaptive_refinement.bulk_marking)
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
+          triangulation, indicators, adaptive_refinement.fraction, 0., VectorTools::L2_norm);
+    else
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+          triangulation, indicators, adaptive_refinement.fraction, 0.);
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::refine_mesh()
   {
     using Criterion = Parameters::AdaptiveRefinement::Criterion;
@@ -112,14 +125,12 @@ namespace StabilizedLagrangian
                                              {},
                                              u,
                                              indicators);
-          parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-              triangulation, indicators, adaptive_refinement.fraction, 0.);
+          mark_for_refinement(indicators);
           break;
         }
       case Criterion::estimator:
         // η_K of the last converged load step (estimate_error())
-        parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-            triangulation, error_indicators, adaptive_refinement.fraction, 0.);
+        mark_for_refinement(error_indicators);
         break;
       }
     // the mesh the flags make (with the smoothing's own flags), against the
@@ -306,6 +317,7 @@ namespace StabilizedLagrangian
   template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \
   template void                          ContactProblem<dim>::refine_around_active_set();            \
   template void                          ContactProblem<dim>::flag_every_cell();                     \
+  template void ContactProblem<dim>::mark_for_refinement(const Vector<float> &);                     \
   template void ContactProblem<dim>::write_cycle_errors(const std::string &) const;
 
   SL_INSTANTIATE(2)

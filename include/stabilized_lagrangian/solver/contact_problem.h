@@ -903,6 +903,13 @@ namespace StabilizedLagrangian
      */
     void
     check_memory_for_growth(double growth) const;
+    /**
+     * Flag cells by @p indicators (one per active cell) as `Marking` says:
+     * the `Refined fraction` of the cells with the largest, or the fewest
+     * whose squares carry that fraction of the sum.
+     */
+    void
+    mark_for_refinement(const Vector<float> &indicators);
     /** Flag the cells near the recorded active set for refinement. */
     void
     refine_around_active_set();
