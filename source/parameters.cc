@@ -84,6 +84,17 @@ namespace StabilizedLagrangian
           "Quadrature on Γc; the contact and stick/slip statuses live at its "
           "points. Gauss-Lobatto (degree max(k, m) + 1 points per direction) puts them "
           "at the multiplier nodes when m >= k.");
+      prm.declare_entry("Check inf-sup",
+                        "false",
+                        Patterns::Bool(),
+                        "Compute the discrete inf-sup constant beta_h of the pair on the run's "
+                        "mesh before each refinement cycle's load path (as `--inf-sup`, one MPI "
+                        "rank: skipped with a note on more), write it to refinement_cycles.csv "
+                        "and run_summary.csv (inf_sup_beta), and warn when it is zero or falls "
+                        "under refinement (below 0.8 of its largest earlier value): the pair is "
+                        "then not inf-sup stable and the multipliers oscillate. One solve per "
+                        "normal multiplier and a dense eigenproblem of their number: for "
+                        "checking a pair, not for every production run.");
       FrictionLaws::declare_parameters(prm);
       prm.leave_subsection();
     }
@@ -137,9 +148,10 @@ namespace StabilizedLagrangian
       };
       parse_parameter("r_n", "N/mm^3", r_n, r_n_automatic, r_n_factor);
       parse_parameter("r_t", "1/mm", r_t, r_t_automatic, r_t_factor);
-      fe_pair    = prm.get("Finite element pair");
-      quadrature = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
-                                                            : ContactQuadrature::gauss_lobatto;
+      fe_pair       = prm.get("Finite element pair");
+      check_inf_sup = prm.get_bool("Check inf-sup");
+      quadrature    = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
+                                                               : ContactQuadrature::gauss_lobatto;
       prm.leave_subsection();
     }
 

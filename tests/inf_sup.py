@@ -11,7 +11,12 @@ the unstable ones on the patin block (4 x 2 cells refined 4 times, 1 rank):
   so β_h → 0: it decreases at every refinement of the last three, by at
   least 20 % each time;
 - Q1/P2 (richer than the trace): B has a kernel, β_h = 0 to round-off
-  (below 1e-6 of the stable pairs' values)."""
+  (below 1e-6 of the stable pairs' values).
+
+`Contact/Check inf-sup` in a run, on Hertz refined by the estimator four
+times: Q1/P0 is flagged (a warning, and β_h falling in refinement_cycles.csv),
+Q1/P1 and Q2/P2 are not (and their β_h is written to run_summary.csv); on 2
+ranks the check is skipped with a note."""
 import csv
 import os
 import subprocess
@@ -49,4 +54,54 @@ check(all(b[k + 1] < 0.8 * b[k] for k in range(len(b) - 3, len(b) - 1)),
 b = betas("Q1/P2")
 smallest_stable = min(min(v) for v in stable.values())
 check(max(b) < 1e-6 * smallest_stable, f"Q1/P2 unstable, beta_h = 0: max {max(b):.2e}")
+
+# --- Contact/Check inf-sup in a run with refinement cycles --------------------
+with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
+    hertz = f.read()
+
+
+def checked_run(pair, ranks=1):
+    text = hertz + f"""
+subsection Geometry
+  subsection half ball
+    set Global refinements = 2
+    set Local refinements = 2
+  end
+end
+subsection Contact
+  set Finite element pair = {pair}
+  set Check inf-sup = true
+end
+subsection Load stepping
+  set Number of load steps = 1
+end
+subsection Adaptive refinement
+  set Cycles = 4
+  set Criterion = estimator
+end
+subsection Output
+  set Output directory = output
+end
+"""
+    out = f"{workdir}/check_{pair.replace('/', '')}_np{ranks}"
+    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, out, ranks=ranks, expect_success=False)
+    check(code == 0, f"Check inf-sup, {pair} on {ranks} rank(s): exit code {code}")
+    return out + "/output", log
+
+
+for pair, unstable in (("Q1/P1", False), ("Q2/P2", False), ("Q1/P0", True)):
+    output, log = checked_run(pair)
+    if not os.path.exists(output + "/refinement_cycles.csv"):
+        continue
+    cycles = sltest.read_csv(output + "/refinement_cycles.csv")
+    b = [row["inf_sup_beta"] for row in cycles]
+    summary = sltest.read_csv(output + "/run_summary.csv")[0]
+    flagged = "fell under refinement" in log
+    check(flagged == unstable and len(b) == 5 and min(b) > 0 and abs(summary["inf_sup_beta"] - b[-1]) <= 1e-5 * b[-1],
+          f"Check inf-sup, {pair}: {'flagged' if flagged else 'not flagged'}, beta_h per cycle "
+          + ", ".join(f"{x:.3f}" for x in b) + " (also in run_summary.csv)")
+output, log = checked_run("Q1/P1", ranks=2)
+check("runs on one MPI rank" in log and os.path.exists(output + "/run_summary.csv")
+      and "inf_sup_beta" not in open(output + "/run_summary.csv").read(),
+      "Check inf-sup on 2 ranks: skipped with a note, no column")
 check.finish()

@@ -56,7 +56,8 @@ namespace StabilizedLagrangian
       double                       r_n_factor    = 1.; ///< multiplies the automatic r_n
       double                       r_t_factor    = 1.;
       std::string                  fe_pair;
-      ContactQuadrature            quadrature = ContactQuadrature::gauss_lobatto;
+      bool check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
+      ContactQuadrature quadrature = ContactQuadrature::gauss_lobatto;
 
       static void
       declare_parameters(ParameterHandler  &prm,

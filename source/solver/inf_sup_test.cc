@@ -252,11 +252,48 @@ namespace StabilizedLagrangian
     pcout << "Written to " << filename << "\n";
   }
 
+  template <int dim>
+  void
+  ContactProblem<dim>::check_inf_sup()
+  {
+    if (!contact_parameters.check_inf_sup)
+      return;
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+      {
+        if (cycle == 0)
+          pcout << "NOTE: `Contact/Check inf-sup` runs on one MPI rank; not checked on "
+                << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                << " (`--inf-sup N` checks a pair on one rank).\n";
+        return;
+      }
+    TimerOutput::Scope scope(timer, "inf-sup check");
+    const InfSupRecord record = compute_inf_sup_constant();
+    const double       largest =
+        inf_sup_betas.empty() ? 0. : *std::max_element(inf_sup_betas.begin(), inf_sup_betas.end());
+    inf_sup_betas.push_back(record.beta);
+    pcout << "Inf-sup check: beta_h = " << record.beta << " (" << record.normal_multiplier_dofs
+          << " normal multipliers, contact faces up to " << record.contact_mesh_size << " mm)\n";
+    // the stable pairs' beta_h grows towards its limit on coarse meshes and
+    // then levels off; an unstable pair's falls (Q1/P0: by 40 % per halving
+    // of h) or is zero (a multiplier space richer than the trace: doc/fe_pairs.md)
+    if (record.beta < 1e-6)
+      pcout << "WARNING: the pair " << contact_parameters.fe_pair
+            << " is not inf-sup stable on this mesh: beta_h = " << record.beta
+            << " (some multipliers act on no displacement; the Newton matrix is singular "
+               "where contact is active). A stable pair: doc/fe_pairs.md.\n";
+    else if (record.beta < 0.8 * largest)
+      pcout << "WARNING: beta_h of the pair " << contact_parameters.fe_pair
+            << " fell under refinement, from " << largest << " to " << record.beta
+            << ": the pair is not inf-sup stable, and its multipliers may oscillate from "
+               "node to node on finer meshes. A stable pair: doc/fe_pairs.md.\n";
+  }
+
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                            \
   template InfSupRecord ContactProblem<dim>::compute_inf_sup_constant();                               \
   template void         ContactProblem<dim>::run_inf_sup_test(unsigned int);                           \
+  template void         ContactProblem<dim>::check_inf_sup();                                          \
   template void         ContactProblem<dim>::assemble_h1_gram(const AffineConstraints<double> &,       \
                                                       TrilinosWrappers::SparseMatrix &) const; \
   template double       ContactProblem<dim>::assemble_trace_pairing(                                   \

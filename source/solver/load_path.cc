@@ -57,7 +57,8 @@ namespace StabilizedLagrangian
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
           }
         output_parameters.directory = cycle_directory(cycle);
-        Timer      cycle_clock;
+        Timer cycle_clock;
+        check_inf_sup();
         const bool converged = solve_load_path(resumed);
         record_cycle(cycle_clock.wall_time(), totals);
         if (!converged)
@@ -86,7 +87,8 @@ namespace StabilizedLagrangian
       SafeFiles::write_atomically(run_directory + "/refinement_cycles.csv",
                                   "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
                                   "normal_force_N,estimated_error_sqrtNmm,estimated_relative_error,"
-                                  "estimated_pressure_error,wall_time_s\n");
+                                  "estimated_pressure_error,wall_time_s" +
+                                      std::string(inf_sup_checked() ? ",inf_sup_beta\n" : "\n"));
     if (adaptive_refinement.errors_against_last_cycle && resume)
       pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
                "on a resumed run (the earlier cycles' displacements are not in the "
@@ -116,7 +118,10 @@ namespace StabilizedLagrangian
         << n_multipliers << ',' << statistics.cumulative_newton_iterations() << ','
         << std::setprecision(10) << last_normal_force << ',' << last_step.estimated_error << ','
         << last_step.relative_error() << ',' << last_step.estimated_pressure_error << ','
-        << wall_time << '\n';
+        << wall_time;
+    if (inf_sup_checked())
+      row << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
+    row << '\n';
     SafeFiles::append(run_directory + "/refinement_cycles.csv", row.str());
   }
 
@@ -494,6 +499,8 @@ namespace StabilizedLagrangian
            "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
            "assemblies,jacobian_assemblies,estimated_error_sqrtNmm,estimated_contact_error_sqrtNmm,"
            "estimated_relative_error,peak_memory_MiB,wall_time_s";
+    if (inf_sup_checked())
+      file << ",inf_sup_beta";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
@@ -506,6 +513,8 @@ namespace StabilizedLagrangian
          << path_work.jacobians << ',' << last_step.estimated_error << ','
          << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
          << ',' << wall_time;
+    if (inf_sup_checked())
+      file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';

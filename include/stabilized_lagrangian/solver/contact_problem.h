@@ -164,6 +164,22 @@ namespace StabilizedLagrangian
     compute_inf_sup_constant();
 
     /**
+     * @brief `Contact/Check inf-sup`: β_h on the current mesh, added to
+     * inf_sup_betas, with a warning when it is zero or has fallen below 0.8
+     * of its largest earlier value (inf_sup_test.cc). One MPI rank; a note
+     * and nothing else on more.
+     */
+    void
+    check_inf_sup();
+    /** Whether check_inf_sup() computes β_h in this run (the check asked for, one rank). */
+    bool
+    inf_sup_checked() const
+    {
+      return contact_parameters.check_inf_sup &&
+             Utilities::MPI::n_mpi_processes(mpi_communicator) == 1;
+    }
+
+    /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
      * iterate with the contact statuses, thresholds and pairings frozen
      * (assembly.cc, as the residuals below).
@@ -1149,6 +1165,8 @@ namespace StabilizedLagrangian
      */
     std::vector<TrilinosWrappers::MPI::Vector>              earlier_cycles;
     std::vector<std::pair<types::global_dof_index, double>> cycle_records;
+    /** `Contact/Check inf-sup`: β_h of each cycle's mesh so far */
+    std::vector<double> inf_sup_betas;
     /** per adaptive refinement cycle, the cells this rank flagged for refinement */
     std::vector<std::vector<CellId>> refinement_history;
   };
