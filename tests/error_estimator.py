@@ -57,16 +57,7 @@ for dim, pair, local in ((2, "Q1/P1", 2), (2, "Q2/P1", 1), (3, "Q1/P1", 0)):
               "stress is exact for a uniform one)")
 
 # --- Hertz: decrease and effectivity ---------------------------------------
-prm_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm")
-# the Hertz cylinder on a coarse mesh
-hertz = sltest.read_prm(os.path.join(prm_dir, "hertz_cylinder.prm")) + """
-subsection Geometry
-  subsection half ball
-    set Global refinements = 2
-    set Local refinements = 2
-  end
-end
-"""
+hertz = sltest.coarse_hertz()
 
 
 def hertz_cycles(name, criterion, cycles, fraction=0.3, marking="fixed number"):

@@ -56,18 +56,8 @@ smallest_stable = min(min(v) for v in stable.values())
 check(max(b) < 1e-6 * smallest_stable, f"Q1/P2 unstable, beta_h = 0: max {max(b):.2e}")
 
 # --- Contact/Check inf-sup in a run with refinement cycles --------------------
-with open(os.path.join(os.path.dirname(__file__), "..", "prm", "hertz_cylinder.prm")) as f:
-    hertz = f.read()
-
-
 def checked_run(pair, ranks=1):
-    text = hertz + f"""
-subsection Geometry
-  subsection half ball
-    set Global refinements = 2
-    set Local refinements = 2
-  end
-end
+    text = sltest.coarse_hertz() + f"""
 subsection Contact
   set Finite element pair = {pair}
   set Check inf-sup = true

@@ -67,6 +67,20 @@ def scene(name, **replacements):
     return text
 
 
+def coarse_hertz():
+    """prm/hertz_cylinder.prm on a coarse mesh (2 global, 2 local refinements): the start of
+    the refinement-cycle tests."""
+    return read_prm(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm",
+                                 "hertz_cylinder.prm")) + """
+subsection Geometry
+  subsection half ball
+    set Global refinements = 2
+    set Local refinements = 2
+  end
+end
+"""
+
+
 def read_prm(path):
     """The text of a parameter file, with the relative mesh files it names made absolute (the
     tests run it from another directory)."""
