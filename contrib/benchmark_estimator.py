@@ -332,6 +332,13 @@ lines += ["## 3. Accuracy targets", "",
           "| Newton iterations | wall time (s) |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
 for name in targets:
     result = results[name]
+    if result and not result["target"] and result["stopped"]:
+        # the memory guard stopped the cycles before the target: the last mesh that fitted
+        r = result["rows"][-1]
+        lines.append(f"| {name.split(' target')[0]} | {name.split('target ')[1]} | no: the next mesh would not "
+                     f"fit in memory | {r['cycle']} | {r['dofs']} | {r['estimated_pressure_error']:.4f} | "
+                     f"{r['pressure_error']:.4f} | | | |")
+        continue
     if not result or not result["target"]:
         lines.append(f"| {name} | | failed | | | | | | | |")
         continue
