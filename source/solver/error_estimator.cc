@@ -368,64 +368,77 @@ namespace StabilizedLagrangian
     FEFaceValues<dim>        edge_values(*fe_u, edge_rule, update_quadrature_points);
     const double             master_compliance = deformable_master_compliance();
     double                   mismatch = 0., norm = 0.;
+    // the mismatch at the points of a face evaluator against a pressure
+    const auto add_mismatch = [&](const FaceEvaluator &at, const auto &pressure) {
+      for (unsigned int q = 0; q < at.n_points(); ++q)
+        {
+          const ContactKinematics<dim> k = at.kinematics(q);
+          mismatch += std::pow(pressure(q) - k.contact_pressure, 2) * k.JxW;
+          norm += k.contact_pressure * k.contact_pressure * k.JxW;
+        }
+    };
     for (const auto &face : contact_faces)
       {
-        const unsigned int      n_points = face_quadrature(face).size();
-        std::vector<Point<dim>> points(n_points);
-        std::vector<bool>       in_contact(n_points);
-        std::vector<double>     pressures(n_points), gaps(n_points);
-        bool                    deformable = false;
-        nodes.reinit(face, ghosted_solution);
-        for (unsigned int q = 0; q < n_points; ++q)
-          {
-            const ContactPointState<dim> &state = contact_states[face.first_point + q];
-            const ContactKinematics<dim>  k     = nodes.kinematics(q);
-            points[q]                           = k.position - k.displacement;
-            in_contact[q]                       = state.in_contact;
-            pressures[q]                        = k.contact_pressure;
-            gaps[q]                             = state.pairing.gap(k.position);
-            deformable                          = deformable || state.pairing.master_face >= 0;
-          }
         face_values.reinit(face.cell, face.face_no);
         Tensor<1, dim> normal;
         for (unsigned int q = 0; q < rule.size(); ++q)
           normal += face_values.normal_vector(q);
         normal /= normal.norm();
-        const Materials::Interface<dim> &material = material_of(face.cell);
-        const double                     compliance =
-            (1. - std::pow(material.poissons_ratio(), 2)) / material.youngs_modulus() +
-            (deformable ? master_compliance : 0.);
-        const Contact::SquareRootOnset<dim> onset(
-            points, in_contact, pressures, gaps, normal, 1. / compliance);
+        const Contact::SquareRootOnset<dim> onset =
+            square_root_onset(face, nodes, normal, master_compliance);
         if (onset.valid())
           {
             edge_values.reinit(face.cell, face.face_no);
             edge_evaluator.reinit(face, ghosted_solution);
-            for (unsigned int q = 0; q < edge_rule.size(); ++q)
-              {
-                const ContactKinematics<dim> k = edge_evaluator.kinematics(q);
-                mismatch +=
-                    std::pow(onset.pressure(edge_values.quadrature_point(q)) - k.contact_pressure,
-                             2) *
-                    k.JxW;
-                norm += k.contact_pressure * k.contact_pressure * k.JxW;
-              }
-            continue;
+            add_mismatch(edge_evaluator, [&](const unsigned int q) {
+              return onset.pressure(edge_values.quadrature_point(q));
+            });
           }
-        evaluator.reinit(face, ghosted_solution);
-        const auto recovered =
-            recovery.at(face.cell, face.face_no, normal, face_values.get_quadrature_points());
-        for (unsigned int q = 0; q < rule.size(); ++q)
+        else
           {
-            const ContactKinematics<dim> k = evaluator.kinematics(q);
-            const Tensor<1, dim>        &N = face_values.normal_vector(q);
-            mismatch += std::pow(-(recovered[q] * N) * N - k.contact_pressure, 2) * k.JxW;
-            norm += k.contact_pressure * k.contact_pressure * k.JxW;
+            evaluator.reinit(face, ghosted_solution);
+            const auto recovered =
+                recovery.at(face.cell, face.face_no, normal, face_values.get_quadrature_points());
+            add_mismatch(evaluator, [&](const unsigned int q) {
+              const Tensor<1, dim> &N = face_values.normal_vector(q);
+              return -(recovered[q] * N) * N;
+            });
           }
       }
     mismatch = Utilities::MPI::sum(mismatch, mpi_communicator);
     norm     = Utilities::MPI::sum(norm, mpi_communicator);
     return norm > 0. ? std::sqrt(mismatch / norm) : 0.;
+  }
+
+  template <int dim>
+  Contact::SquareRootOnset<dim>
+  ContactProblem<dim>::square_root_onset(const ContactFace    &face,
+                                         FaceEvaluator        &nodes,
+                                         const Tensor<1, dim> &normal,
+                                         const double          master_compliance) const
+  {
+    const unsigned int      n_points = face_quadrature(face).size();
+    std::vector<Point<dim>> points(n_points);
+    std::vector<bool>       in_contact(n_points);
+    std::vector<double>     pressures(n_points), gaps(n_points);
+    bool                    deformable = false;
+    nodes.reinit(face, ghosted_solution);
+    for (unsigned int q = 0; q < n_points; ++q)
+      {
+        const ContactPointState<dim> &state = contact_states[face.first_point + q];
+        const ContactKinematics<dim>  k     = nodes.kinematics(q);
+        points[q]                           = k.position - k.displacement;
+        in_contact[q]                       = state.in_contact;
+        pressures[q]                        = k.contact_pressure;
+        gaps[q]                             = state.pairing.gap(k.position);
+        deformable                          = deformable || state.pairing.master_face >= 0;
+      }
+    const Materials::Interface<dim> &material = material_of(face.cell);
+    const double                     compliance =
+        (1. - std::pow(material.poissons_ratio(), 2)) / material.youngs_modulus() +
+        (deformable ? master_compliance : 0.);
+    return Contact::SquareRootOnset<dim>(
+        points, in_contact, pressures, gaps, normal, 1. / compliance);
   }
 
   template <int dim>

@@ -19,6 +19,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
@@ -985,6 +986,16 @@ namespace StabilizedLagrangian
      */
     double
     pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const;
+    /**
+     * The square-root onset of the pressure fitted to the contact points of
+     * @p face (evaluated by @p nodes, the contact quadrature), with the pair's
+     * modulus; not valid() unless the face holds the end of the contact zone.
+     */
+    Contact::SquareRootOnset<dim>
+    square_root_onset(const ContactFace    &face,
+                      FaceEvaluator        &nodes,
+                      const Tensor<1, dim> &normal,
+                      double                master_compliance) const;
     /** (1 − ν²)/E of the body holding a deformable master surface; 0 without one. */
     double
     deformable_master_compliance() const;
