@@ -68,10 +68,7 @@ parser.add_argument("--quick", action="store_true", help="fewer cycles and targe
 parser.add_argument("--reuse", action="store_true",
                     help="keep the runs of an earlier call in the work directory whose scene is unchanged")
 tool_cli.add_output_arguments(parser, None, ["error_estimator.md", "error_estimator.csv"])
-args = parser.parse_args()
-if args.output is None:
-    args.output = args.workdir
-tool_cli.check_output(parser, args)
+args = tool_cli.parse_with_workdir(parser)
 workdir = os.path.abspath(args.workdir)
 
 

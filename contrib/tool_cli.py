@@ -90,6 +90,16 @@ def check_output(parser, args):
         parser.error(f"argument --output: '{args.output}' exists and is not a directory")
 
 
+def parse_with_workdir(parser):
+    """Parse the arguments of a tool with --workdir and add_output_arguments(parser, None, ...):
+    --output defaults to the work directory, and is checked."""
+    args = parser.parse_args()
+    if args.output is None:
+        args.output = args.workdir
+    check_output(parser, args)
+    return args
+
+
 def destination(args, name):
     """Where the result file `name` goes (its folder created): doc/name with --doc, else
     --output itself when it names a file of name's kind, else name in the --output folder."""

@@ -409,6 +409,21 @@ namespace StabilizedLagrangian
                         "Budget of Newton iterations over all the loops of one load step: "
                         "a step that needs more fails (and is cut), so cycling fixed points end "
                         "quickly.");
+      prm.declare_entry("Stopping",
+                        "fixed",
+                        Patterns::Selection("fixed|adaptive"),
+                        "fixed: Newton stops at its `Tolerance`. adaptive: it also stops as "
+                        "soon as its linearisation error is below `Adaptive stopping fraction` "
+                        "of the discretisation error estimated at the iterate (after Ern and "
+                        "Vohralik's adaptive inexact Newton methods): the energy norm of the "
+                        "last Newton update against the residual error estimate "
+                        "(doc/formulation.md, \"Adaptive stopping\"). An iteration that "
+                        "cannot change the answer beyond the mesh's own error is not made.");
+      prm.declare_entry("Adaptive stopping fraction",
+                        "0.1",
+                        Patterns::Double(0., 1.),
+                        "Stopping = adaptive: the fraction of the estimated discretisation "
+                        "error that the linearisation error must be below.");
       prm.enter_subsection("Geometry loop");
       declare_method("the pairing (closest point, normal and tangents)");
       prm.declare_entry("Maximum iterations", "10", Patterns::Integer(1));
@@ -468,6 +483,8 @@ namespace StabilizedLagrangian
       };
       prm.enter_subsection("Nonlinear solver");
       max_newton_per_step = prm.get_integer("Maximum Newton iterations per load step");
+      adaptive_stopping   = prm.get("Stopping") == "adaptive";
+      adaptive_fraction   = prm.get_double("Adaptive stopping fraction");
       prm.enter_subsection("Geometry loop");
       geometry_method         = method();
       geometry_max_iterations = prm.get_integer("Maximum iterations");

@@ -194,6 +194,9 @@ namespace StabilizedLagrangian
       unsigned int      line_search_steps; ///< halvings of the Newton step, 0: none
       double            newton_tolerance;
       ResidualCriterion newton_criterion;
+      /** `Stopping = adaptive`: Newton also stops at a fraction of the estimated error */
+      bool   adaptive_stopping = false;
+      double adaptive_fraction = 0.1;
 
       static void
       declare_parameters(ParameterHandler &prm);

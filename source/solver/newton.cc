@@ -82,7 +82,7 @@ namespace StabilizedLagrangian
         NewtonMeasure measured;
         if (!measure_iterate(progress, measured))
           return false;
-        if (measured.measure <= measured.tolerance)
+        if (measured.measure <= measured.tolerance || adaptive_stop(progress))
           {
             stats.inner_loops.push_back(InnerLoopRecord{
                 k, j, i, progress.iteration, measured.residual, measured.scaled, 0});
@@ -235,7 +235,51 @@ namespace StabilizedLagrangian
         return false;
       }
     newton_constraints.distribute(update);
+    if (solver_parameters.adaptive_stopping)
+      progress.update_energy = displacement_energy(update);
     return true;
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &update) const
+  {
+    // (δuᵀ K δu)^½ with the multiplier rows of δ left out: the tangent's
+    // energy of the displacement part (the matrix of the last solve)
+    TrilinosWrappers::MPI::Vector displacement(locally_owned, mpi_communicator);
+    TrilinosWrappers::MPI::Vector product(locally_owned, mpi_communicator);
+    for (const auto index : locally_owned_u)
+      displacement(index) = update(index);
+    displacement.compress(VectorOperation::insert);
+    system_matrix.vmult(product, displacement);
+    return std::sqrt(std::abs(displacement * product));
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::adaptive_stop(NewtonProgress &progress)
+  {
+    // Adaptive stopping (doc/formulation.md, "Adaptive stopping"; Ern and
+    // Vohralik, SISC 35, 2013): the last update bounds the linearisation
+    // error of the iterate it led to (by far, once Newton converges
+    // quadratically); once it is below a fraction of the discretisation
+    // error estimated at that iterate, further iterations cannot change the
+    // answer beyond what the mesh resolves.
+    // The estimate is made at every check: with one made per Newton loop
+    // and reused, the J2 patin's outer loops cycled (1445 Newton iterations
+    // against 124; doc/adaptive_stopping.md).
+    if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
+        !std::isfinite(progress.update_energy))
+      return false;
+    StepStatistics at_iterate;
+    estimate_error(at_iterate);
+    const bool stop =
+        progress.update_energy <= solver_parameters.adaptive_fraction * at_iterate.estimated_error;
+    if (stop && output_parameters.log_newton)
+      pcout << "    Newton stops adaptively: last update " << progress.update_energy
+            << " sqrt(N mm), estimated discretisation error " << at_iterate.estimated_error
+            << " sqrt(N mm)\n";
+    return stop;
   }
 
   template <int dim>
@@ -328,25 +372,28 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                   \
-  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                  \
-  template bool                       ContactProblem<dim>::newton_loop(                       \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);      \
-  template bool ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);      \
-  template bool ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);      \
-  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                 \
-                                                      NewtonProgress &,                       \
-                                                      const NewtonMeasure &,                  \
-                                                      TrilinosWrappers::MPI::Vector &);       \
-  template bool ContactProblem<dim>::may_iterate(                                             \
-      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                 \
-  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                       \
-                                                      TrilinosWrappers::MPI::Vector &);       \
-  template void ContactProblem<dim>::advance(                                                 \
-      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);         \
-  template void ContactProblem<dim>::line_search(                                             \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *); \
-  template void ContactProblem<dim>::log_iterate(unsigned int) const;                         \
+#define SL_INSTANTIATE(dim)                                                                       \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                      \
+  template bool                       ContactProblem<dim>::newton_loop(                           \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);          \
+  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);        \
+  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);        \
+  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &);                           \
+  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &) \
+      const;                                                                                      \
+  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                     \
+                                                      NewtonProgress &,                           \
+                                                      const NewtonMeasure &,                      \
+                                                      TrilinosWrappers::MPI::Vector &);           \
+  template bool ContactProblem<dim>::may_iterate(                                                 \
+      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                     \
+  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                           \
+                                                      TrilinosWrappers::MPI::Vector &);           \
+  template void ContactProblem<dim>::advance(                                                     \
+      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);             \
+  template void ContactProblem<dim>::line_search(                                                 \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);     \
+  template void ContactProblem<dim>::log_iterate(unsigned int) const;                             \
   template void ContactProblem<dim>::log_trial(double);
 
   SL_INSTANTIATE(2)

@@ -533,9 +533,11 @@ namespace StabilizedLagrangian
       {
         return newton_decides_statuses ? &watch : nullptr;
       }
-      unsigned int iteration         = 0;
-      double       first_measure     = 0.; ///< the criterion's measure at iteration 0
-      double       previous_residual = std::numeric_limits<double>::infinity();
+      unsigned int iteration     = 0;
+      double       first_measure = 0.; ///< the criterion's measure at iteration 0
+      /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
+      double update_energy     = std::numeric_limits<double>::infinity();
+      double previous_residual = std::numeric_limits<double>::infinity();
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
       const bool     newton_decides_statuses;
@@ -549,6 +551,16 @@ namespace StabilizedLagrangian
       double measure   = 0.; ///< what the criterion compares with the tolerance
       double tolerance = 0.;
     };
+    /**
+     * `Nonlinear solver/Stopping = adaptive`: whether the last update's energy
+     * is below the fraction of the discretisation error estimated at the
+     * iterate (newton.cc).
+     */
+    bool
+    adaptive_stop(NewtonProgress &progress);
+    /** (δuᵀ K δu)^½ of the displacement part of a Newton direction, K the last solve's matrix. */
+    double
+    displacement_energy(const TrilinosWrappers::MPI::Vector &update) const;
     /**
      * The tangent predictor, the first Newton iteration of a load step whose
      * Dirichlet increment Δū is non-zero (doc/formulation.md, "Stopping
