@@ -268,11 +268,17 @@ namespace StabilizedLagrangian
     // The estimate is made at every check: with one made per Newton loop
     // and reused, the J2 patin's outer loops cycled (1445 Newton iterations
     // against 124; doc/adaptive_stopping.md).
+    // No estimate is made while the update is above twice what the last one
+    // of this loop allows: the estimate moves far less than the updates.
     if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
-        !std::isfinite(progress.update_energy))
+        !std::isfinite(progress.update_energy) ||
+        (progress.last_estimate > 0. &&
+         progress.update_energy >
+             2. * solver_parameters.adaptive_fraction * progress.last_estimate))
       return false;
     StepStatistics at_iterate;
     estimate_error(at_iterate);
+    progress.last_estimate = at_iterate.estimated_error;
     const bool stop =
         progress.update_energy <= solver_parameters.adaptive_fraction * at_iterate.estimated_error;
     if (stop && output_parameters.log_newton)

@@ -536,7 +536,9 @@ namespace StabilizedLagrangian
       unsigned int iteration     = 0;
       double       first_measure = 0.; ///< the criterion's measure at iteration 0
       /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
-      double update_energy     = std::numeric_limits<double>::infinity();
+      double update_energy = std::numeric_limits<double>::infinity();
+      /** `Stopping = adaptive`: the discretisation error estimated at the last check, √(N mm) */
+      double last_estimate     = 0.;
       double previous_residual = std::numeric_limits<double>::infinity();
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
