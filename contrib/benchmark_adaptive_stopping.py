@@ -28,6 +28,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tool_cli  # noqa: E402
+from run_output import profile_steps, read_csv  # noqa: E402
 from hertz_errors import hertz_errors  # noqa: E402
 
 SCENES = ["patin_elastic", "patin_neo_hookean", "patin_elastoplastic", "hertz_cylinder"]
@@ -41,10 +42,6 @@ parser.add_argument("--fraction", type=tool_cli.positive_float, default=0.1,
 tool_cli.add_output_arguments(parser, None, ["adaptive_stopping.md", "adaptive_stopping.csv"])
 args = tool_cli.parse_with_workdir(parser)
 
-
-def read_csv(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
 def run(scene, mode):
@@ -76,12 +73,12 @@ end
         return None
     summary = read_csv(os.path.join(output, "run_summary.csv"))[0]
     last = read_csv(os.path.join(output, "statistics.csv"))[-1]
-    profile = sorted(p for p in os.listdir(output) if p.startswith("profile-"))[-1]
+    last_profile = list(profile_steps(output).values())[-1]
     print(f"  {scene} {mode}: {summary['newton_iterations']:.0f} Newton iterations, {elapsed:.1f} s", flush=True)
     return {"newton": int(summary["newton_iterations"]), "steps": int(summary["load_steps"]),
             "wall": summary["wall_time_s"], "estimate": summary["estimated_relative_error"],
             "fn": last["normal_force_N"], "ft": last.get("tangential_force_N", 0.),
-            "profile": read_csv(os.path.join(output, profile))}
+            "profile": read_csv(last_profile)}
 
 
 start = time.time()

@@ -52,6 +52,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tool_cli  # noqa: E402
+from run_output import profile_steps, read_csv  # noqa: E402
 from hertz_errors import hertz_errors  # noqa: E402
 
 ROOT = tool_cli.ROOT
@@ -109,17 +110,13 @@ def indented(indentation):
             f"      set Function constants = delta={indentation}\n    end\n  end\nend\n")
 
 
-def read_csv(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
-
 
 def pressure_error(dim, directory):
     """The relative L2 error of the last step's pressure against Hertz, with the run's force."""
     statistics = read_csv(os.path.join(directory, "statistics.csv"))[-1]
-    profile = sorted(p for p in os.listdir(directory) if p.startswith("profile-"))[-1]
+    last_profile = list(profile_steps(directory).values())[-1]
     force = statistics["normal_force_N"]
-    return hertz_errors(dim, force, read_csv(os.path.join(directory, profile)))["surface_l2_error"]
+    return hertz_errors(dim, force, read_csv(last_profile))["surface_l2_error"]
 
 
 reused_runs = []

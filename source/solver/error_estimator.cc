@@ -36,13 +36,10 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::estimate_error(StepStatistics &stats)
   {
-    TimerOutput::Scope scope(timer, "error estimate");
-    share_ghost_history();
+    TimerOutput::Scope                  scope(timer, "error estimate");
     const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
     Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
-    double         energy = add_volume_residuals(u, squared);
-    add_face_residuals(u, squared);
-    add_contact_residuals(u, contact);
+    double         energy          = residual_indicators(u, squared, contact);
     stats.estimated_pressure_error = pressure_estimate(u);
     error_indicators.reinit(squared.size());
     double total = 0., contact_total = 0.;
@@ -60,6 +57,31 @@ namespace StabilizedLagrangian
     stats.estimated_error         = std::sqrt(total);
     stats.estimated_contact_error = std::sqrt(contact_total);
     stats.energy_norm             = std::sqrt(std::max(energy, 0.));
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::estimated_energy_error()
+  {
+    TimerOutput::Scope                  scope(timer, "error estimate");
+    const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+    Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
+    residual_indicators(u, squared, contact);
+    squared += contact;
+    return std::sqrt(Utilities::MPI::sum(squared.l1_norm(), mpi_communicator));
+  }
+
+  template <int dim>
+  double
+  ContactProblem<dim>::residual_indicators(const TrilinosWrappers::MPI::Vector &u,
+                                           Vector<double>                      &squared,
+                                           Vector<double>                      &contact)
+  {
+    share_ghost_history();
+    const double energy = add_volume_residuals(u, squared);
+    add_face_residuals(u, squared);
+    add_contact_residuals(u, contact);
+    return energy;
   }
 
   template <int dim>
@@ -417,7 +439,13 @@ namespace StabilizedLagrangian
                                          const Tensor<1, dim> &normal,
                                          const double          master_compliance) const
   {
-    const unsigned int      n_points = face_quadrature(face).size();
+    const unsigned int n_points     = face_quadrature(face).size();
+    const auto         state        = contact_states.begin() + face.first_point;
+    const auto         n_in_contact = static_cast<unsigned int>(
+        std::count_if(state, state + n_points, [](const auto &s) { return s.in_contact; }));
+    // a face all in contact or all open holds no end of the contact zone
+    if (n_in_contact == 0 || n_in_contact == n_points)
+      return Contact::SquareRootOnset<dim>();
     std::vector<Point<dim>> points(n_points);
     std::vector<bool>       in_contact(n_points);
     std::vector<double>     pressures(n_points), gaps(n_points);
@@ -465,6 +493,9 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                         \
   template void   ContactProblem<dim>::estimate_error(StepStatistics &);                            \
+  template double ContactProblem<dim>::estimated_energy_error();                                    \
+  template double ContactProblem<dim>::residual_indicators(                                         \
+      const TrilinosWrappers::MPI::Vector &, Vector<double> &, Vector<double> &);                   \
   template void   ContactProblem<dim>::share_ghost_history();                                       \
   template double ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &,  \
                                                             Vector<double> &) const;                \

@@ -256,11 +256,9 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::check_inf_sup()
   {
-    if (!contact_parameters.check_inf_sup)
-      return;
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+    if (!inf_sup_checked())
       {
-        if (cycle == 0)
+        if (contact_parameters.check_inf_sup && cycle == 0)
           pcout << "NOTE: `Contact/Check inf-sup` runs on one MPI rank; not checked on "
                 << Utilities::MPI::n_mpi_processes(mpi_communicator)
                 << " (`--inf-sup N` checks a pair on one rank).\n";

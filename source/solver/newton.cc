@@ -276,14 +276,12 @@ namespace StabilizedLagrangian
          progress.update_energy >
              2. * solver_parameters.adaptive_fraction * progress.last_estimate))
       return false;
-    StepStatistics at_iterate;
-    estimate_error(at_iterate);
-    progress.last_estimate = at_iterate.estimated_error;
+    progress.last_estimate = estimated_energy_error();
     const bool stop =
-        progress.update_energy <= solver_parameters.adaptive_fraction * at_iterate.estimated_error;
+        progress.update_energy <= solver_parameters.adaptive_fraction * progress.last_estimate;
     if (stop && output_parameters.log_newton)
       pcout << "    Newton stops adaptively: last update " << progress.update_energy
-            << " sqrt(N mm), estimated discretisation error " << at_iterate.estimated_error
+            << " sqrt(N mm), estimated discretisation error " << progress.last_estimate
             << " sqrt(N mm)\n";
     return stop;
   }

@@ -33,6 +33,9 @@ namespace StabilizedLagrangian
     template <int dim> class SquareRootOnset
     {
     public:
+      /** No fit (a face that holds no end of the contact zone). */
+      SquareRootOnset() = default;
+
       /**
        * Fit to @p points of a face with outward unit normal @p normal: at each,
        * whether it is in contact, λ_n and the gap g. No fit (valid() false)

@@ -964,6 +964,21 @@ namespace StabilizedLagrangian
      */
     void
     estimate_error(StepStatistics &stats);
+    /**
+     * The energy estimate η alone, at the current iterate (adaptive stopping):
+     * no pressure estimate, error_indicators left as they are.
+     */
+    double
+    estimated_energy_error();
+    /**
+     * The residual terms of every locally owned cell: the volume, face and
+     * boundary ones into @p squared, the contact ones into @p contact
+     * (squared, N mm); returns ∫ P:∇u over the owned cells.
+     */
+    double
+    residual_indicators(const TrilinosWrappers::MPI::Vector &u,
+                        Vector<double>                      &squared,
+                        Vector<double>                      &contact);
     /** Copy the committed material history of the ghost cells from their owners. */
     void
     share_ghost_history();
