@@ -3,8 +3,8 @@
 
 Usage: contrib/compare.py SCENE.prm [--executable build/stabilized_lagrangian]
            [--pairs PAIR ...] [--algorithms nested|newton|scene ...] [--refinements N ...]
-           [--rn-factors F ...] [--rt-factors F ...]
-           [--choice 'pair=Q2/P1, algorithm=newton, refinement=1, rn_factor=1, rt_factor=1' ...]
+           [--rn-factors F ...] [--rt-factors F ...] [--stoppings fixed|adaptive ...]
+           [--choice 'pair=Q2/P1, algorithm=newton, refinement=1, rn_factor=1, rt_factor=1, stopping=fixed' ...]
            [--set 'Section/Sub/Entry=value' ...] [--measure pressure|normal_force|tangential_force|half_width|peak]
            [--target ERROR] [--reference-pair PAIR] [--reference-refinement N]
            [--jobs N] [--timeout SECONDS] [--workdir DIR] [--name NAME] [--output FOLDER | --doc]
@@ -28,10 +28,14 @@ the work directory, /tmp/compare/<scene> unless --workdir; doc/ with --doc):
 NAME is compare_<scene> unless --name.
 
 Choices: the cartesian product of --pairs, --algorithms, --refinements,
---rn-factors and --rt-factors (each defaults to the scene's own: its pair, its
-algorithm, refinement 0, factors 1), or exactly the --choice entries (keys
-pair, algorithm, refinement, rn_factor, rt_factor; a key left out takes the
-scene's own). An algorithm is `nested` (the three loops of doc/formulation.md
+--rn-factors, --rt-factors and --stoppings (each defaults to the scene's own:
+its pair, its algorithm, refinement 0, factors 1, its `Nonlinear
+solver/Stopping`), or exactly the --choice entries (keys pair, algorithm,
+refinement, rn_factor, rt_factor, stopping; a key left out takes the scene's
+own). A stopping is `fixed` (the loops' own tolerances) or `adaptive` (they
+also stop once their error is below a fraction of the estimated
+discretisation error, doc/formulation.md "Adaptive stopping"); the reference
+stops at the fixed tolerances. An algorithm is `nested` (the three loops of doc/formulation.md
 "Nested loops" as fixed points), `newton` (all three folded into the
 generalized Newton) or `scene` (the loop methods the scene sets). A
 refinement N is added to the scene's `Geometry/<model>/Global refinements`
@@ -111,8 +115,10 @@ from hertz_errors import hertz_errors  # noqa: E402
 
 LOOPS = ("Geometry loop", "Friction loop", "Status loop")
 ALGORITHMS = ("nested", "newton", "scene")
-Choice = namedtuple("Choice", "pair algorithm refinement rn_factor rt_factor")
-CHOICE_TYPES = {"pair": str, "algorithm": str, "refinement": int, "rn_factor": float, "rt_factor": float}
+STOPPINGS = ("fixed", "adaptive")
+Choice = namedtuple("Choice", "pair algorithm refinement rn_factor rt_factor stopping")
+CHOICE_TYPES = {"pair": str, "algorithm": str, "refinement": int, "rn_factor": float, "rt_factor": float,
+                "stopping": str}
 # the errors of each kind of accuracy: CSV column, Markdown header
 HERTZ_ERRORS = [("pressure_l2_error", "p L2 error"), ("half_width_error", "half-width error"),
                 ("peak_error", "peak p error")]
@@ -145,6 +151,8 @@ def choice_spec(text):
             raise argparse.ArgumentTypeError(f"{key}: '{value}' is not a {CHOICE_TYPES[key].__name__}") from None
     if spec.get("algorithm", "nested") not in ALGORITHMS:
         raise argparse.ArgumentTypeError(f"algorithm '{spec['algorithm']}' is not one of {', '.join(ALGORITHMS)}")
+    if spec.get("stopping", "fixed") not in STOPPINGS:
+        raise argparse.ArgumentTypeError(f"stopping '{spec['stopping']}' is not one of {', '.join(STOPPINGS)}")
     for key in ("rn_factor", "rt_factor"):
         if spec.get(key, 1) <= 0:
             raise argparse.ArgumentTypeError(f"{key} {spec[key]} is not > 0")
@@ -183,6 +191,7 @@ class Scene:
         methods = {self.parameters[f"Nonlinear solver/{loop}/Method"] for loop in LOOPS}
         self.algorithm = {frozenset(["fixed point"]): "nested", frozenset(["newton"]): "newton"}.get(
             frozenset(methods), "scene")
+        self.stopping = self.parameters["Nonlinear solver/Stopping"]
         self.automatic = {name: self.parameters[f"Contact/{name}"].strip() == "automatic" for name in ("r_n", "r_t")}
         self.hertz = self.hertz_constants()
 
@@ -211,7 +220,8 @@ class Scene:
         settings = [f"Contact/Finite element pair={choice.pair}",
                     f"{self.refinement_entry}={self.refinements + choice.refinement}",
                     f"Contact/Automatic r_n factor={choice.rn_factor!r}",
-                    f"Contact/Automatic r_t factor={choice.rt_factor!r}"]
+                    f"Contact/Automatic r_t factor={choice.rt_factor!r}",
+                    f"Nonlinear solver/Stopping={choice.stopping}"]
         if choice.algorithm == "nested":
             settings += [f"Nonlinear solver/{loop}/Method=fixed point" for loop in LOOPS]
         return settings
@@ -238,16 +248,17 @@ def fe_pairs(print_parameters):
 
 def choices_of(args, scene, parser):
     """The choices to run, checked against the scene (a usage error names what is wrong)."""
-    own = Choice(scene.pair, scene.algorithm, 0, 1.0, 1.0)
+    own = Choice(scene.pair, scene.algorithm, 0, 1.0, 1.0, scene.stopping)
     if args.choice:
-        lists = [k for k in ("pairs", "algorithms", "refinements", "rn_factors", "rt_factors") if getattr(args, k)]
+        lists = [k for k in ("pairs", "algorithms", "refinements", "rn_factors", "rt_factors", "stoppings")
+                 if getattr(args, k)]
         if lists:
             parser.error(f"--choice lists the runs itself: it excludes --{lists[0].replace('_', '-')}")
         choices = [own._replace(**spec) for spec in args.choice]
     else:
         lists = [getattr(args, k) or [getattr(own, f)] for k, f in (
             ("pairs", "pair"), ("algorithms", "algorithm"), ("refinements", "refinement"),
-            ("rn_factors", "rn_factor"), ("rt_factors", "rt_factor"))]
+            ("rn_factors", "rn_factor"), ("rt_factors", "rt_factor"), ("stoppings", "stopping"))]
         choices = [Choice(*values) for values in itertools.product(*lists)]
     choices = list(dict.fromkeys(choices))  # the same choice once
     for choice in choices:
@@ -272,6 +283,8 @@ def describe(choice, scene):
            f"{scene.refinements + choice.refinement}"
     if choice.rn_factor != 1 or choice.rt_factor != 1:
         text += f", r_n x{choice.rn_factor:g}, r_t x{choice.rt_factor:g}"
+    if choice.stopping != "fixed":
+        text += f", {choice.stopping} stopping"
     return text
 
 
@@ -448,19 +461,25 @@ def plot(rows, key, scene_name, target, best, png_path):
                and math.isfinite(r[key]) and r[key] > 0]
     series = {}
     for r in sorted(plotted, key=lambda r: r["refinement"]):
-        series.setdefault((r["pair"], r["algorithm"], r["rn_factor"], r["rt_factor"]), []).append(r)
+        series.setdefault((r["pair"], r["algorithm"], r["rn_factor"], r["rt_factor"], r["stopping"]), []).append(r)
     pairs = sorted({s[0] for s in series})
-    factors = sorted({s[2:] for s in series})
+    # a line style per (factors, stopping)
+    variants = sorted({s[2:] for s in series})
     markers = {"nested": "o", "newton": "s", "scene": "^"}
     styles = ["-", "--", ":", "-."]
     colours = [f"C{i % 10}" for i in range(len(pairs))]
     for ax, x_key, x_label in zip(axes, ("wall_time_s", "dofs"),
                                   ("wall time of the run (s)", "DoFs (displacement + multipliers)")):
         annotated = set()
-        for number, ((pair, algorithm, rn, rt), runs) in enumerate(series.items()):
-            label = f"{pair}, {algorithm}" + (f", r_n x{rn:g}, r_t x{rt:g}" if len(factors) > 1 else "")
+        for number, ((pair, algorithm, rn, rt, stopping), runs) in enumerate(series.items()):
+            label = f"{pair}, {algorithm}"
+            if len({v[:2] for v in variants}) > 1:
+                label += f", r_n x{rn:g}, r_t x{rt:g}"
+            if len({v[2] for v in variants}) > 1:
+                label += f", {stopping} stopping"
             ax.plot([r[x_key] for r in runs], [r[key] for r in runs], marker=markers[algorithm],
-                    color=colours[pairs.index(pair)], linestyle=styles[factors.index((rn, rt)) % len(styles)],
+                    color=colours[pairs.index(pair)],
+                    linestyle=styles[variants.index((rn, rt, stopping)) % len(styles)],
                     mfc="none" if algorithm == "newton" else None, label=label)
             for r in runs:
                 if (r[x_key], r[key]) in annotated:  # another algorithm's run on the same point
@@ -492,11 +511,13 @@ def plot(rows, key, scene_name, target, best, png_path):
     figure.savefig(png_path, dpi=110)
 
 
-TEXT_COLUMNS = ("pair", "algorithm", "outcome", "target")  # left-aligned in the page's table
+TEXT_COLUMNS = ("pair", "algorithm", "stopping", "outcome", "target")  # left-aligned in the page's table
 
 
-def markdown(rows, error_columns, key, target, best, scene, reference_line, basis, command, png_name, show_factors):
-    header = ["#", "pair", "algorithm", "global ref.", *(["r_n factor", "r_t factor"] if show_factors else []),
+def markdown(rows, error_columns, key, target, best, scene, reference_line, basis, command, png_name, show_factors,
+             show_stopping):
+    header = ["#", "pair", "algorithm", *(["stopping"] if show_stopping else []), "global ref.",
+              *(["r_n factor", "r_t factor"] if show_factors else []),
               "outcome", "DoFs", "Newton it.", "wall (s)", "peak memory (MiB)",
               *[title for _, title in error_columns], "estimate (energy, rel.)", *(["target"] if target else [])]
     scene_algorithm = scene.algorithm if scene.algorithm != "scene" else "of its own loop methods"
@@ -504,7 +525,7 @@ def markdown(rows, error_columns, key, target, best, scene, reference_line, basi
              f"Generated by `{command}`.", "",
              f"Scene `{tool_cli.shown(scene.path)}`: {scene.dim}D, geometry `{scene.geometry}` with "
              f"{scene.refinement_entry.split('/')[-1]} = {scene.refinements}, pair `{scene.pair}`, "
-             f"algorithm {scene_algorithm}. Each run is the scene with the choice's pair, algorithm, global "
+             f"algorithm {scene_algorithm}. Each run is the scene with the choice's pair, algorithm, stopping, global "
              "refinements and r factors; runs share the machine (`--jobs`), so their wall times compare with "
              "each other.", "", basis, "",
              f"The measured error of the plot and of the target: the {MEASURE_LABELS[key]}. The estimate is "
@@ -515,7 +536,8 @@ def markdown(rows, error_columns, key, target, best, scene, reference_line, basi
              "|" + "".join("---|" if title in TEXT_COLUMNS else "---:|" for title in header)]
     for r in rows:
         ok = r["outcome"] == "converged"
-        cells = [str(r["index"]), r["pair"], r["algorithm"], str(r["global_refinements"])]
+        cells = [str(r["index"]), r["pair"], r["algorithm"], *([r["stopping"]] if show_stopping else []),
+                 str(r["global_refinements"])]
         if show_factors:
             cells += [f"{r['rn_factor']:g}", f"{r['rt_factor']:g}"]
         cells.append(r["outcome"] if ok else f"**failed: {r['outcome']}** (exit code {number(r['exit_code'])})")
@@ -586,9 +608,11 @@ def parse_arguments():
                         help="Contact/Automatic r_n factor values (default: 1)")
     parser.add_argument("--rt-factors", nargs="+", type=tool_cli.positive_float, metavar="F",
                         help="Contact/Automatic r_t factor values (default: 1)")
+    parser.add_argument("--stoppings", nargs="+", choices=STOPPINGS, metavar="STOPPING",
+                        help="fixed or adaptive: Nonlinear solver/Stopping (default: the scene's)")
     parser.add_argument("--choice", action="append", type=choice_spec, default=[], metavar="'key=value, ...'",
                         help="one run (repeatable), instead of the product of the lists: keys pair, algorithm, "
-                             "refinement, rn_factor, rt_factor; the scene's own for a key left out")
+                             "refinement, rn_factor, rt_factor, stopping; the scene's own for a key left out")
     parser.add_argument("--set", action="append", default=[], type=tool_cli.setting,
                         metavar="'Section/Sub/Entry=value'", help="an entry set in every run, repeatable")
     parser.add_argument("--measure", choices=sorted(MEASURES), default="pressure",
@@ -640,7 +664,7 @@ def plan(parser, args):
             level = max(c.refinement for c in runs.values()) + 1
         if scene.refinements + level < 0:
             parser.error(f"--reference-refinement {level}: the scene's {scene.refinement_entry} would be negative")
-        runs[0] = Choice(args.reference_pair, args.reference_algorithm, level, 1.0, 1.0)
+        runs[0] = Choice(args.reference_pair, args.reference_algorithm, level, 1.0, 1.0, "fixed")
     try:
         texts = {k: scene.text(c, args.set) for k, c in runs.items()}
     except ValueError as error:
@@ -743,7 +767,7 @@ def main():
             r["cheapest"] = r is best
     basis, reference_line = accuracy_text(scene, runs, done, rows)
 
-    columns = ["index", "pair", "algorithm", "refinement", "global_refinements", "rn_factor", "rt_factor",
+    columns = ["index", "pair", "algorithm", "stopping", "refinement", "global_refinements", "rn_factor", "rt_factor",
                "outcome", "exit_code", "cells", "dofs", "load_steps", "newton_iterations", "wall_time_s",
                "process_time_s", "peak_memory_MiB", "normal_force_N", "tangential_force_N",
                *[c for c, _ in error_columns], "estimated_relative_error",
@@ -752,9 +776,10 @@ def main():
     robustness_map.write_csv(rows, csv_path, columns)
     plot(rows, key, os.path.basename(args.scene), args.target, best, png_path)
     show_factors = any(r["rn_factor"] != 1 or r["rt_factor"] != 1 for r in rows)
+    show_stopping = len({r["stopping"] for r in rows}) > 1 or any(r["stopping"] != "fixed" for r in rows)
     robustness_map.write_section(md_path, BEGIN, END, markdown(
         rows, error_columns, key, args.target, best, scene, reference_line, basis, regenerating_command(args),
-        os.path.basename(png_path), show_factors))
+        os.path.basename(png_path), show_factors, show_stopping))
 
     for r in rows:
         measured = ", ".join(f"{title} {percent(r.get(c))}" for c, title in error_columns)

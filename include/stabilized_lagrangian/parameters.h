@@ -196,7 +196,7 @@ namespace StabilizedLagrangian
       ResidualCriterion newton_criterion;
       /** `Stopping = adaptive`: Newton also stops at a fraction of the estimated error */
       bool   adaptive_stopping = false;
-      double adaptive_fraction = 0.1;
+      double adaptive_fraction = 0.02;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -77,6 +77,7 @@ namespace StabilizedLagrangian
                              out << std::setprecision(10) << row.record.contact_force[d];
                            }});
       columns.push_back(field("folded_loops", &S::folded_loops));
+      columns.push_back(field("adaptive_stops", &S::adaptive_stops));
       columns.push_back(field("friction_law_violations", &S::friction_law_violations));
       columns.push_back(field("estimated_error_sqrtNmm", &S::estimated_error, 6));
       columns.push_back(field("estimated_contact_error_sqrtNmm", &S::estimated_contact_error, 6));

@@ -60,15 +60,18 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  double
+  typename ContactProblem<dim>::EnergyEstimate
   ContactProblem<dim>::estimated_energy_error()
   {
     TimerOutput::Scope                  scope(timer, "error estimate");
     const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
     Vector<double> squared(triangulation.n_active_cells()), contact(squared.size());
-    residual_indicators(u, squared, contact);
+    const double   energy = residual_indicators(u, squared, contact);
     squared += contact;
-    return std::sqrt(Utilities::MPI::sum(squared.l1_norm(), mpi_communicator));
+    EnergyEstimate estimate;
+    estimate.error       = std::sqrt(Utilities::MPI::sum(squared.l1_norm(), mpi_communicator));
+    estimate.energy_norm = std::sqrt(std::max(Utilities::MPI::sum(energy, mpi_communicator), 0.));
+    return estimate;
   }
 
   template <int dim>
@@ -492,8 +495,9 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                         \
-  template void   ContactProblem<dim>::estimate_error(StepStatistics &);                            \
-  template double ContactProblem<dim>::estimated_energy_error();                                    \
+  template void ContactProblem<dim>::estimate_error(StepStatistics &);                              \
+  template typename ContactProblem<dim>::EnergyEstimate                                             \
+                  ContactProblem<dim>::estimated_energy_error();                                    \
   template double ContactProblem<dim>::residual_indicators(                                         \
       const TrilinosWrappers::MPI::Vector &, Vector<double> &, Vector<double> &);                   \
   template void   ContactProblem<dim>::share_ghost_history();                                       \

@@ -40,7 +40,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::geometry_loop(StepStatistics &stats)
   {
     // folded into Newton, the pairing is re-evaluated at every iterate
-    const bool iterate = loops.iterates(Loop::geometry);
+    const bool     iterate = loops.iterates(Loop::geometry);
+    EnergyEstimate last_estimate;
     for (unsigned int k = 1; k <= solver_parameters.geometry_max_iterations; ++k)
       {
         stats.geometry_iterations = k;
@@ -53,7 +54,9 @@ namespace StabilizedLagrangian
           return false;
         if (!iterate)
           return true;
-        if (relative_displacement_change(previous) <= solver_parameters.geometry_tolerance)
+        const double change = relative_displacement_change(previous);
+        if (change <= solver_parameters.geometry_tolerance ||
+            (k > 1 && loop_stops_adaptively(previous, change, "geometry", last_estimate, stats)))
           return true;
       }
     // the pairing re-evaluated at every Newton iterate instead
@@ -76,12 +79,16 @@ namespace StabilizedLagrangian
         ++stats.friction_iterations;
         return status_loop(stats, k, 1);
       }
+    EnergyEstimate last_estimate;
     for (unsigned int j = 1; j <= solver_parameters.friction_max_iterations; ++j)
       {
         ++stats.friction_iterations;
+        const TrilinosWrappers::MPI::Vector previous = solution;
         if (!status_loop(stats, k, j))
           return false;
-        if (update_friction_thresholds() <= solver_parameters.friction_tolerance)
+        const double change = update_friction_thresholds();
+        if (change <= solver_parameters.friction_tolerance ||
+            (j > 1 && loop_stops_adaptively(previous, change, "friction", last_estimate, stats)))
           return true;
       }
     // The fixed point on s = μ λ_n does not contract on this step: the
@@ -95,6 +102,37 @@ namespace StabilizedLagrangian
     return fold_for_this_step(Loop::friction, [&]() {
       return status_loop(stats, k, solver_parameters.friction_max_iterations + 1);
     });
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
+                                             const double                         relative_change,
+                                             const char                          *loop,
+                                             EnergyEstimate                      &last_estimate,
+                                             StepStatistics                      &stats)
+  {
+    // Adaptive stopping of a loop of the nest (doc/formulation.md, "Adaptive
+    // stopping"): the change its last iteration made to the displacement
+    // stands for the error left by stopping it, as the last update does for
+    // Newton. A loop's first iteration is not tested (its callers start at
+    // the second): its change carries the load increment or the outer
+    // loop's update, not this loop's error.
+    if (!solver_parameters.adaptive_stopping)
+      return false;
+    TrilinosWrappers::MPI::Vector change(locally_owned, mpi_communicator);
+    for (const auto index : locally_owned_u)
+      change(index) = solution(index) - previous(index);
+    change.compress(VectorOperation::insert);
+    const double energy = displacement_energy(change);
+    if (!below_discretisation_error(energy, relative_change, last_estimate))
+      return false;
+    ++stats.adaptive_stops;
+    if (output_parameters.log_newton)
+      pcout << "  " << loop << " loop stops adaptively: last change " << energy
+            << " sqrt(N mm), relative " << relative_change << ", estimated discretisation error "
+            << last_estimate.error << " sqrt(N mm), relative " << last_estimate.relative() << "\n";
+    return true;
   }
 
   template <int dim>
@@ -124,14 +162,18 @@ namespace StabilizedLagrangian
     // repeat is a cycle that never ends
     std::vector<std::vector<unsigned char>> seen{contact_statuses()};
     std::string                             reason;
+    EnergyEstimate                          last_estimate;
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
+        const TrilinosWrappers::MPI::Vector previous = solution;
         if (!newton_loop(stats, k, j, i))
           return false;
         const unsigned int changes              = update_statuses();
         stats.inner_loops.back().status_changes = changes;
-        if (changes == 0)
+        // the statuses have no relative measure: the energy of the change alone
+        if (changes == 0 ||
+            (i > 1 && loop_stops_adaptively(previous, 0., "status", last_estimate, stats)))
           return true;
         seen.push_back(contact_statuses());
         const unsigned int repeated = first_equal(seen, seen.back(), seen.size() - 1);
@@ -216,20 +258,25 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                     \
-  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                       \
-  template double ContactProblem<dim>::relative_displacement_change(                            \
-      const TrilinosWrappers::MPI::Vector &) const;                                             \
-  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                           \
-  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);             \
-  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);   \
-  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
-  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;            \
-  template unsigned int               ContactProblem<dim>::first_equal(                         \
-      const std::vector<std::vector<unsigned char>> &,                            \
-      const std::vector<unsigned char> &,                                         \
-      unsigned int) const;                                                        \
-  template unsigned int ContactProblem<dim>::update_statuses();                                 \
+#define SL_INSTANTIATE(dim)                                                                       \
+  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                         \
+  template double ContactProblem<dim>::relative_displacement_change(                              \
+      const TrilinosWrappers::MPI::Vector &) const;                                               \
+  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                             \
+  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);               \
+  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);     \
+  template bool ContactProblem<dim>::loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &, \
+                                                           double,                                \
+                                                           const char *,                          \
+                                                           EnergyEstimate &,                      \
+                                                           StepStatistics &);                     \
+  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);   \
+  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;              \
+  template unsigned int               ContactProblem<dim>::first_equal(                           \
+      const std::vector<std::vector<unsigned char>> &,                              \
+      const std::vector<unsigned char> &,                                           \
+      unsigned int) const;                                                          \
+  template unsigned int ContactProblem<dim>::update_statuses();                                   \
   template double       ContactProblem<dim>::update_friction_thresholds();
 
   SL_INSTANTIATE(2)

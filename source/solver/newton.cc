@@ -82,8 +82,10 @@ namespace StabilizedLagrangian
         NewtonMeasure measured;
         if (!measure_iterate(progress, measured))
           return false;
-        if (measured.measure <= measured.tolerance || adaptive_stop(progress))
+        const bool converged = measured.measure <= measured.tolerance;
+        if (converged || adaptive_stop(progress, measured.scaled))
           {
+            stats.adaptive_stops += !converged;
             stats.inner_loops.push_back(InnerLoopRecord{
                 k, j, i, progress.iteration, measured.residual, measured.scaled, 0});
             stats.newton_iterations += progress.iteration;
@@ -257,33 +259,47 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::adaptive_stop(NewtonProgress &progress)
+  ContactProblem<dim>::adaptive_stop(NewtonProgress &progress, const double scaled_residual)
   {
     // Adaptive stopping (doc/formulation.md, "Adaptive stopping"; Ern and
     // Vohralik, SISC 35, 2013): the last update bounds the linearisation
     // error of the iterate it led to (by far, once Newton converges
     // quadratically); once it is below a fraction of the discretisation
     // error estimated at that iterate, further iterations cannot change the
-    // answer beyond what the mesh resolves.
+    // answer beyond what the mesh resolves. The update's energy leaves out
+    // the multipliers: the scaled residual, whose blocks include the gap and
+    // the slip, stands for them.
     // The estimate is made at every check: with one made per Newton loop
     // and reused, the J2 patin's outer loops cycled (1445 Newton iterations
     // against 124; doc/adaptive_stopping.md).
-    // No estimate is made while the update is above twice what the last one
-    // of this loop allows: the estimate moves far less than the updates.
     if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
         !std::isfinite(progress.update_energy) ||
-        (progress.last_estimate > 0. &&
-         progress.update_energy >
-             2. * solver_parameters.adaptive_fraction * progress.last_estimate))
+        !below_discretisation_error(
+            progress.update_energy, scaled_residual, progress.last_estimate))
       return false;
-    progress.last_estimate = estimated_energy_error();
-    const bool stop =
-        progress.update_energy <= solver_parameters.adaptive_fraction * progress.last_estimate;
-    if (stop && output_parameters.log_newton)
+    if (output_parameters.log_newton)
       pcout << "    Newton stops adaptively: last update " << progress.update_energy
-            << " sqrt(N mm), estimated discretisation error " << progress.last_estimate
-            << " sqrt(N mm)\n";
-    return stop;
+            << " sqrt(N mm), scaled residual " << scaled_residual
+            << ", estimated discretisation error " << progress.last_estimate.error
+            << " sqrt(N mm), relative " << progress.last_estimate.relative() << "\n";
+    return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::below_discretisation_error(const double    change_energy,
+                                                  const double    relative_change,
+                                                  EnergyEstimate &last_estimate)
+  {
+    // No estimate is made while the change is above twice what the loop's
+    // last estimate allows: the estimate moves far less than the changes.
+    const double fraction = solver_parameters.adaptive_fraction;
+    if (last_estimate.error > 0. && (change_energy > 2. * fraction * last_estimate.error ||
+                                     relative_change > 2. * fraction * last_estimate.relative()))
+      return false;
+    last_estimate = estimated_energy_error();
+    return change_energy <= fraction * last_estimate.error &&
+           relative_change <= fraction * last_estimate.relative();
   }
 
   template <int dim>
@@ -376,28 +392,29 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                       \
-  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                      \
-  template bool                       ContactProblem<dim>::newton_loop(                           \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);          \
-  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);        \
-  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);        \
-  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &);                           \
-  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &) \
-      const;                                                                                      \
-  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                     \
-                                                      NewtonProgress &,                           \
-                                                      const NewtonMeasure &,                      \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template bool ContactProblem<dim>::may_iterate(                                                 \
-      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                     \
-  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                           \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template void ContactProblem<dim>::advance(                                                     \
-      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);             \
-  template void ContactProblem<dim>::line_search(                                                 \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);     \
-  template void ContactProblem<dim>::log_iterate(unsigned int) const;                             \
+#define SL_INSTANTIATE(dim)                                                                          \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                         \
+  template bool                       ContactProblem<dim>::newton_loop(                              \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);             \
+  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);           \
+  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);           \
+  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                      \
+  template bool   ContactProblem<dim>::below_discretisation_error(double, double, EnergyEstimate &); \
+  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &)    \
+      const;                                                                                         \
+  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                        \
+                                                      NewtonProgress &,                              \
+                                                      const NewtonMeasure &,                         \
+                                                      TrilinosWrappers::MPI::Vector &);              \
+  template bool ContactProblem<dim>::may_iterate(                                                    \
+      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                        \
+  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                              \
+                                                      TrilinosWrappers::MPI::Vector &);              \
+  template void ContactProblem<dim>::advance(                                                        \
+      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);                \
+  template void ContactProblem<dim>::line_search(                                                    \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);        \
+  template void ContactProblem<dim>::log_iterate(unsigned int) const;                                \
   template void ContactProblem<dim>::log_trial(double);
 
   SL_INSTANTIATE(2)

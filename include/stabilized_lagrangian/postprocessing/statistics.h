@@ -51,6 +51,12 @@ namespace StabilizedLagrangian
     std::array<double, 3> contact_force            = {{0., 0., 0.}};
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
     unsigned int folded_loops = 0;
+    /**
+     * `Stopping = adaptive`: the loops (Newton's and the nest's) that stopped
+     * because their error fell below the fraction of the estimate, before
+     * their own criterion
+     */
+    unsigned int adaptive_stops = 0;
     /** points in contact that break the law they report (Contact::FrictionLawCheck) */
     unsigned int friction_law_violations = 0;
     std::string  friction_law_report; ///< what broke it, where; empty if nothing

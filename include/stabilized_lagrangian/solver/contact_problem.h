@@ -465,6 +465,19 @@ namespace StabilizedLagrangian
                       const double        wall_time,
                       const WorkCounters &path_work) const;
 
+    /** The energy estimate η and the solution's energy norm, at an iterate. */
+    struct EnergyEstimate
+    {
+      double error       = 0.; ///< η, √(N mm)
+      double energy_norm = 0.; ///< (∫ P:∇u)^½, √(N mm)
+      /** η against the energy norm (0 for an undeformed body) */
+      double
+      relative() const
+      {
+        return energy_norm > 0. ? error / energy_norm : 0.;
+      }
+    };
+
     // --- nested_loops.cc: the loops of seed §2.2: geometry → friction threshold → status ---
     bool
     solve_load_step(StepStatistics &stats);
@@ -482,6 +495,20 @@ namespace StabilizedLagrangian
     update_friction_thresholds();
     double
     relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
+    /**
+     * `Nonlinear solver/Stopping = adaptive` for a loop of the nest (@p loop
+     * names it in the log): below_discretisation_error() for the energy of
+     * the displacement change of its last iteration, solution − @p previous,
+     * and @p relative_change, the measure of its own criterion.
+     * @p last_estimate is the loop's last estimate (none before the first),
+     * which spares the estimate while the change is far above it.
+     */
+    bool
+    loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
+                          const double                         relative_change,
+                          const char                          *loop,
+                          EnergyEstimate                      &last_estimate,
+                          StepStatistics                      &stats);
     /**
      * Run @p solve with @p loop folded into the generalized Newton, then
      * restore the method chosen: the fallback of a fixed point that cycles or
@@ -537,9 +564,9 @@ namespace StabilizedLagrangian
       double       first_measure = 0.; ///< the criterion's measure at iteration 0
       /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
       double update_energy = std::numeric_limits<double>::infinity();
-      /** `Stopping = adaptive`: the discretisation error estimated at the last check, √(N mm) */
-      double last_estimate     = 0.;
-      double previous_residual = std::numeric_limits<double>::infinity();
+      /** `Stopping = adaptive`: the discretisation error estimated at the last check */
+      EnergyEstimate last_estimate;
+      double         previous_residual = std::numeric_limits<double>::infinity();
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
       const bool     newton_decides_statuses;
@@ -559,7 +586,20 @@ namespace StabilizedLagrangian
      * iterate (newton.cc).
      */
     bool
-    adaptive_stop(NewtonProgress &progress);
+    adaptive_stop(NewtonProgress &progress, const double scaled_residual);
+    /**
+     * Adaptive stopping's test, shared by Newton and the nested loops
+     * (doc/formulation.md, "Adaptive stopping"): whether @p change_energy, the
+     * energy of a loop's last change, is below `Adaptive stopping fraction`
+     * γ of the discretisation error η estimated at the current iterate, and
+     * @p relative_change, the loop's own relative measure (its criterion's),
+     * below γ η / ‖u‖. The estimate is skipped (false) while the change is
+     * above twice what @p last_estimate, the loop's last one, allows.
+     */
+    bool
+    below_discretisation_error(const double    change_energy,
+                               const double    relative_change,
+                               EnergyEstimate &last_estimate);
     /** (δuᵀ K δu)^½ of the displacement part of a Newton direction, K the last solve's matrix. */
     double
     displacement_energy(const TrilinosWrappers::MPI::Vector &update) const;
@@ -968,7 +1008,7 @@ namespace StabilizedLagrangian
      * The energy estimate η alone, at the current iterate (adaptive stopping):
      * no pressure estimate, error_indicators left as they are.
      */
-    double
+    EnergyEstimate
     estimated_energy_error();
     /**
      * The residual terms of every locally owned cell: the volume, face and
