@@ -44,7 +44,8 @@ factor` and `Automatic r_t factor`: the scene must have r_n (r_t) = automatic
 to vary them. --set entries apply to every run, the reference too.
 
 Measured per run: DoFs (displacement + multipliers), load steps, Newton
-iterations, the wall time and peak memory of run_summary.csv (runs share the
+iterations (those of the attempts that failed and were cut apart, in the CSV's
+failed_newton_iterations), the wall time and peak memory of run_summary.csv (runs share the
 machine --jobs at a time: their times are comparable with each other), and
 the run's own error estimate (`estimated_relative_error` of run_summary.csv:
 the residual estimate against the solution's energy norm, doc/formulation.md
@@ -312,6 +313,7 @@ def run_results(case_dir):
         raise ValueError(f"the output of {case_dir} is incomplete: {error}") from None
     return {"cells": int(summary["cells"]), "dofs": int(summary["displacement_dofs"] + summary["multiplier_dofs"]),
             "load_steps": int(summary["load_steps"]), "newton_iterations": int(summary["newton_iterations"]),
+            "failed_newton_iterations": int(summary["failed_attempt_newton_iterations"]),
             "wall_time_s": summary["wall_time_s"], "peak_memory_MiB": summary["peak_memory_MiB"],
             "estimated_relative_error": summary["estimated_relative_error"],
             "normal_force_N": last["normal_force_N"], "tangential_force_N": last["tangential_force_N"],
@@ -768,7 +770,8 @@ def main():
     basis, reference_line = accuracy_text(scene, runs, done, rows)
 
     columns = ["index", "pair", "algorithm", "stopping", "refinement", "global_refinements", "rn_factor", "rt_factor",
-               "outcome", "exit_code", "cells", "dofs", "load_steps", "newton_iterations", "wall_time_s",
+               "outcome", "exit_code", "cells", "dofs", "load_steps", "newton_iterations", "failed_newton_iterations",
+               "wall_time_s",
                "process_time_s", "peak_memory_MiB", "normal_force_N", "tangential_force_N",
                *[c for c, _ in error_columns], "estimated_relative_error",
                *(["meets_target", "cheapest"] if args.target else [])]

@@ -7,7 +7,8 @@ Hertz's closed form and the runs' estimates are finite, and the L2 error of
 the pressure and of the half-width decrease with refinement for each pair;
 --target marks the cheapest choice that meets it, the one of least wall time.
 A run that fails is a failed row and exit code 1, not a crash; a bad argument
-stops the tool with exit code 2 before anything runs."""
+stops the tool with exit code 2 before anything runs. Each row names its
+stopping (`Nonlinear solver/Stopping`, the scene's: fixed)."""
 import csv
 import math
 import os
@@ -54,6 +55,7 @@ choices = {(p, g) for p in ("Q1/P1", "Q2/P1") for g in ("2", "3")}
 check(len(rows) == 4 and {(r["pair"], r["global_refinements"]) for r in rows} == choices,
       f"a row per choice: {[(r['pair'], r['global_refinements']) for r in rows]}")
 check(all(r["outcome"] == "converged" for r in rows), f"outcomes {[r['outcome'] for r in rows]}")
+check(all(r.get("stopping") == "fixed" for r in rows), f"the scene's stopping: {[r.get('stopping') for r in rows]}")
 measures = ("pressure_l2_error", "half_width_error", "peak_error", "estimated_relative_error")
 
 
@@ -101,7 +103,8 @@ check(code == 1 and len(rows) == 1 and rows[0]["outcome"] == "diverged" and rows
 
 # bad arguments: exit code 2 with a message, nothing run
 for arguments, message in ((["--jobs", "0"], "--jobs"), (["--pairs", "Q9/P9"], "Q9/P9"),
-                           (["--measure", "normal_force"], "--measure"), (["--refinements", "-3"], "negative")):
+                           (["--measure", "normal_force"], "--measure"), (["--refinements", "-3"], "negative"),
+                           (["--choice", "stopping=sometimes"], "stopping")):
     bad = os.path.join(workdir, "bad")
     code, out, err = run(*arguments, "--workdir", bad)
     ran = [d for d in os.listdir(bad) if os.path.isdir(os.path.join(bad, d))] if os.path.isdir(bad) else []

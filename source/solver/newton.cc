@@ -271,7 +271,7 @@ namespace StabilizedLagrangian
     // the slip, stands for them.
     // The estimate is made at every check: with one made per Newton loop
     // and reused, the J2 patin's outer loops cycled (1445 Newton iterations
-    // against 124; doc/adaptive_stopping.md).
+    // against 124; doc/formulation.md, "Adaptive stopping").
     if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
         !std::isfinite(progress.update_energy) ||
         !below_discretisation_error(
