@@ -40,8 +40,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::geometry_loop(StepStatistics &stats)
   {
     // folded into Newton, the pairing is re-evaluated at every iterate
-    const bool     iterate = loops.iterates(Loop::geometry);
-    EnergyEstimate last_estimate;
+    const bool iterate = loops.iterates(Loop::geometry);
     for (unsigned int k = 1; k <= solver_parameters.geometry_max_iterations; ++k)
       {
         stats.geometry_iterations = k;
@@ -56,7 +55,7 @@ namespace StabilizedLagrangian
           return true;
         const double change = relative_displacement_change(previous);
         if (change <= solver_parameters.geometry_tolerance ||
-            (k > 1 && loop_stops_adaptively(previous, change, "geometry", last_estimate, stats)))
+            (k > 1 && loop_stops_adaptively(previous, change, "geometry", stats)))
           return true;
       }
     // the pairing re-evaluated at every Newton iterate instead
@@ -79,7 +78,6 @@ namespace StabilizedLagrangian
         ++stats.friction_iterations;
         return status_loop(stats, k, 1);
       }
-    EnergyEstimate last_estimate;
     for (unsigned int j = 1; j <= solver_parameters.friction_max_iterations; ++j)
       {
         ++stats.friction_iterations;
@@ -88,7 +86,7 @@ namespace StabilizedLagrangian
           return false;
         const double change = update_friction_thresholds();
         if (change <= solver_parameters.friction_tolerance ||
-            (j > 1 && loop_stops_adaptively(previous, change, "friction", last_estimate, stats)))
+            (j > 1 && loop_stops_adaptively(previous, change, "friction", stats)))
           return true;
       }
     // The fixed point on s = μ λ_n does not contract on this step: the
@@ -109,7 +107,6 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
                                              const double                         relative_change,
                                              const char                          *loop,
-                                             EnergyEstimate                      &last_estimate,
                                              StepStatistics                      &stats)
   {
     // Adaptive stopping of a loop of the nest (doc/formulation.md, "Adaptive
@@ -125,7 +122,7 @@ namespace StabilizedLagrangian
       change(index) = solution(index) - previous(index);
     change.compress(VectorOperation::insert);
     const double energy = displacement_energy(change);
-    if (!below_discretisation_error(energy, relative_change, last_estimate))
+    if (!below_discretisation_error(energy, relative_change))
       return false;
     ++stats.adaptive_stops;
     if (output_parameters.log_newton)
@@ -162,7 +159,6 @@ namespace StabilizedLagrangian
     // repeat is a cycle that never ends
     std::vector<std::vector<unsigned char>> seen{contact_statuses()};
     std::string                             reason;
-    EnergyEstimate                          last_estimate;
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
@@ -172,8 +168,7 @@ namespace StabilizedLagrangian
         const unsigned int changes              = update_statuses();
         stats.inner_loops.back().status_changes = changes;
         // the statuses have no relative measure: the energy of the change alone
-        if (changes == 0 ||
-            (i > 1 && loop_stops_adaptively(previous, 0., "status", last_estimate, stats)))
+        if (changes == 0 || (i > 1 && loop_stops_adaptively(previous, 0., "status", stats)))
           return true;
         seen.push_back(contact_statuses());
         const unsigned int repeated = first_equal(seen, seen.back(), seen.size() - 1);
@@ -258,25 +253,22 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                       \
-  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                         \
-  template double ContactProblem<dim>::relative_displacement_change(                              \
-      const TrilinosWrappers::MPI::Vector &) const;                                               \
-  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                             \
-  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);               \
-  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);     \
-  template bool ContactProblem<dim>::loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &, \
-                                                           double,                                \
-                                                           const char *,                          \
-                                                           EnergyEstimate &,                      \
-                                                           StepStatistics &);                     \
-  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);   \
-  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;              \
-  template unsigned int               ContactProblem<dim>::first_equal(                           \
-      const std::vector<std::vector<unsigned char>> &,                              \
-      const std::vector<unsigned char> &,                                           \
-      unsigned int) const;                                                          \
-  template unsigned int ContactProblem<dim>::update_statuses();                                   \
+#define SL_INSTANTIATE(dim)                                                                     \
+  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                       \
+  template double ContactProblem<dim>::relative_displacement_change(                            \
+      const TrilinosWrappers::MPI::Vector &) const;                                             \
+  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                           \
+  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);             \
+  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);   \
+  template bool ContactProblem<dim>::loop_stops_adaptively(                                     \
+      const TrilinosWrappers::MPI::Vector &, double, const char *, StepStatistics &);           \
+  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
+  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;            \
+  template unsigned int               ContactProblem<dim>::first_equal(                         \
+      const std::vector<std::vector<unsigned char>> &,                            \
+      const std::vector<unsigned char> &,                                         \
+      unsigned int) const;                                                        \
+  template unsigned int ContactProblem<dim>::update_statuses();                                 \
   template double       ContactProblem<dim>::update_friction_thresholds();
 
   SL_INSTANTIATE(2)

@@ -500,14 +500,11 @@ namespace StabilizedLagrangian
      * names it in the log): below_discretisation_error() for the energy of
      * the displacement change of its last iteration, solution − @p previous,
      * and @p relative_change, the measure of its own criterion.
-     * @p last_estimate is the loop's last estimate (none before the first),
-     * which spares the estimate while the change is far above it.
      */
     bool
     loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
                           const double                         relative_change,
                           const char                          *loop,
-                          EnergyEstimate                      &last_estimate,
                           StepStatistics                      &stats);
     /**
      * Run @p solve with @p loop folded into the generalized Newton, then
@@ -563,10 +560,8 @@ namespace StabilizedLagrangian
       unsigned int iteration     = 0;
       double       first_measure = 0.; ///< the criterion's measure at iteration 0
       /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
-      double update_energy = std::numeric_limits<double>::infinity();
-      /** `Stopping = adaptive`: the discretisation error estimated at the last check */
-      EnergyEstimate last_estimate;
-      double         previous_residual = std::numeric_limits<double>::infinity();
+      double update_energy     = std::numeric_limits<double>::infinity();
+      double previous_residual = std::numeric_limits<double>::infinity();
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
       const bool     newton_decides_statuses;
@@ -594,12 +589,10 @@ namespace StabilizedLagrangian
      * γ of the discretisation error η estimated at the current iterate, and
      * @p relative_change, the loop's own relative measure (its criterion's),
      * below γ η / ‖u‖. The estimate is skipped (false) while the change is
-     * above twice what @p last_estimate, the loop's last one, allows.
+     * above twice what the last one (last_estimate) allows.
      */
     bool
-    below_discretisation_error(const double    change_energy,
-                               const double    relative_change,
-                               EnergyEstimate &last_estimate);
+    below_discretisation_error(const double change_energy, const double relative_change);
     /** (δuᵀ K δu)^½ of the displacement part of a Newton direction, K the last solve's matrix. */
     double
     displacement_energy(const TrilinosWrappers::MPI::Vector &update) const;
@@ -1141,7 +1134,9 @@ namespace StabilizedLagrangian
     std::string                    unrecoverable_failure;
     Parameters::LinearSolver       linear_solver_parameters;
     Parameters::AdaptiveRefinement adaptive_refinement;
-    Parameters::Output             output_parameters;
+    /** `Stopping = adaptive`: the discretisation error estimated at the last check of any loop */
+    EnergyEstimate     last_estimate;
+    Parameters::Output output_parameters;
 
     std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
