@@ -6,8 +6,8 @@ Usage: contrib/algorithm_table.py [--executable build/stabilized_lagrangian] [--
            [--workdir DIR] [--output FOLDER | --doc]
 
 For each scene -- the three patins of the seed paper, the Hertz cylinder, the
-patin on a deformable block and the two cylinders, as shipped, and the patins
-and Hertz also in one load step -- runs contrib/compare.py with the algorithms
+patin on a deformable block, the two cylinders and the 3D patin, as shipped,
+and the 2D patins and Hertz also in one load step -- runs contrib/compare.py with the algorithms
 nested (the seed's loops geometry -> friction -> status -> Newton as fixed
 points) and newton (the three folded into the generalized Newton), each with
 `Nonlinear solver/Stopping = fixed` and `adaptive` (doc/formulation.md,
@@ -17,7 +17,8 @@ share the machine --jobs at a time), and the error at the last load step:
 against Hertz's closed form, else against compare.py's reference solution (the
 scene on a finer mesh, Q2/P1, by the generalized Newton with fixed
 tolerances; for the neo-Hookean patin Q1/P1 two refinements finer, where
-Q2/P1 does not converge past t = 0.75).
+Q2/P1 does not converge past t = 0.75; for the 3D patin Q1/P1 one refinement
+finer, which the direct solver holds).
 
 --set entries apply to every run, the references too (e.g. --set
 'Contact/r_t=10'). Writes algorithm_comparison.md and .csv into --output
@@ -46,6 +47,7 @@ SCENES = [
     ("hertz_cylinder", "Hertz cylinder", True, []),
     ("patin_deformable_block", "patin on a deformable block", False, []),
     ("two_cylinders", "two cylinders", False, []),
+    ("patin_3d", "3D patin", False, ["--reference-pair", "Q1/P1", "--reference-refinement", "1"]),
 ]
 ERRORS = [("pressure_l2_error", "p L2 error"), ("normal_force_error", "F_n error"),
           ("tangential_force_error", "F_t error"), ("half_width_error", "half-width error")]
