@@ -305,7 +305,7 @@ if args.doc:
             previous = {QUADRATURES[0]: gl, QUADRATURES[1]: g}
         times = [r["wall_time_s"] for r in rows if r["build"] == label]
         newton = [r["newton_iterations"] for r in rows if r["build"] == label]
-        lines += ["", f"Normal force P (four times the quarter's): "
+        lines += ["", "Normal force P (four times the quarter's): "
                   + ", ".join(sorted({f"{r['normal_force_N']:.0f} N" for r in rows if r['build'] == label}))
                   + f"; Newton iterations {min(newton, default=0)}-{max(newton, default=0)}; "
                   f"wall time per run {min(times, default=0):.0f}-{max(times, default=0):.0f} s.", ""]

@@ -25,7 +25,6 @@ WORKDIR/<scene>/<algorithm>/<binary> with its input.prm and log.txt."""
 import argparse
 import csv
 import os
-import re
 import shlex
 import subprocess
 import sys

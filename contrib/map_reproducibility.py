@@ -26,7 +26,6 @@ differs."""
 import argparse
 import csv
 import os
-import re
 import shlex
 import sys
 import time
