@@ -11,7 +11,10 @@ discretisation error (about the solution's energy), with the default
 - the result stays within the stated fraction of the estimate: the contact
   pressure of every load step differs from the fixed run's by less than the
   fraction times the estimated relative error, relative to the largest
-  pressure."""
+  pressure;
+- on 2 MPI ranks the loops stop where they stop on one (the estimate and the
+  changes are collective): the same Newton and friction iterations in every
+  step."""
 import os
 import sys
 import sltest
@@ -57,4 +60,27 @@ if len(runs) == 2:
     check(len(fixed_profiles) == len(adaptive_profiles) and difference / largest < bound,
           f"the pressure differs by {difference / largest:.1e} of the largest, below {FRACTION} x the "
           f"estimated relative error ({bound:.4f})")
+
+# 2 ranks: the same stops
+out = os.path.join(workdir, "adaptive-np2")
+code, log = sltest.run(executable, patin + """
+subsection Nonlinear solver
+  set Stopping = adaptive
+end
+subsection Output
+  set Output directory = output
+  set Write vtu = false
+end
+""", out, ranks=2, expect_success=False)
+check(code == 0, f"neo-Hookean patin, Stopping = adaptive, 2 ranks: exit code {code}")
+if code != 0:
+    print(log[-2000:])
+elif "adaptive" in runs:
+    parallel = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))
+    columns = ("newton_iterations", "friction_iterations", "status_iterations", "adaptive_stops")
+    same = len(parallel) == len(runs["adaptive"][1]) and all(
+        a[c] == b[c] for a, b in zip(runs["adaptive"][1], parallel) for c in columns)
+    check(same, "2 ranks: the same Newton, friction and status iterations and early stops in every step as "
+                f"1 rank ({sum(r['newton_iterations'] for r in parallel):.0f} Newton iterations against "
+                f"{adaptive['newton_iterations']:.0f})")
 check.finish()
