@@ -181,7 +181,10 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>> inside(face_quadrature.size()), outside(face_quadrature.size());
     const unsigned int          none = numbers::invalid_unsigned_int;
 
-    // ½ h_F ‖⟦P N⟧‖²: each side adds the half it sees from its own cell
+    // ½ h_F ‖⟦P N⟧‖² to each side of an interior face. The jump is the same
+    // seen from either side, so it is computed once: by the side of lower
+    // index when both cells are this rank's, by the own side when the other is
+    // a ghost (whose owner adds its half).
     const auto add_jump = [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
                               const double                                          h) {
       const auto &own   = interface.get_fe_face_values(0);
@@ -199,6 +202,14 @@ namespace StabilizedLagrangian
                   own.JxW(q);
         }
       squared[cell->active_cell_index()] += 0.5 * h * jump / material_of(cell).youngs_modulus();
+      if (neighbor->is_locally_owned())
+        squared[neighbor->active_cell_index()] +=
+            0.5 * h * jump / material_of(neighbor).youngs_modulus();
+    };
+    const auto computes = [](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                             const typename DoFHandler<dim>::active_cell_iterator &neighbor) {
+      return !neighbor->is_locally_owned() ||
+             cell->active_cell_index() < neighbor->active_cell_index();
     };
 
     for (const auto &cell : dof_handler_u.active_cell_iterators())
@@ -212,16 +223,16 @@ namespace StabilizedLagrangian
             else if (cell->neighbor(f)->has_children())
               for (unsigned int s = 0; s < cell->face(f)->n_children(); ++s)
                 {
-                  interface.reinit(cell,
-                                   f,
-                                   s,
-                                   cell->neighbor_child_on_subface(f, s),
-                                   cell->neighbor_of_neighbor(f),
-                                   none);
+                  const auto fine = cell->neighbor_child_on_subface(f, s);
+                  if (!computes(cell, fine))
+                    continue;
+                  interface.reinit(cell, f, s, fine, cell->neighbor_of_neighbor(f), none);
                   add_jump(cell, cell->face(f)->child(s)->diameter());
                 }
             else if (cell->neighbor_is_coarser(f))
               {
+                if (!computes(cell, cell->neighbor(f)))
+                  continue;
                 const auto [neighbor_face, neighbor_subface] =
                     cell->neighbor_of_coarser_neighbor(f);
                 interface.reinit(cell, f, none, cell->neighbor(f), neighbor_face, neighbor_subface);
@@ -229,6 +240,8 @@ namespace StabilizedLagrangian
               }
             else
               {
+                if (!computes(cell, cell->neighbor(f)))
+                  continue;
                 interface.reinit(
                     cell, f, none, cell->neighbor(f), cell->neighbor_of_neighbor(f), none);
                 add_jump(cell, cell->face(f)->diameter());
