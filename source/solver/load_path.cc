@@ -535,6 +535,9 @@ namespace StabilizedLagrangian
          << (s.failed_newton_iterations > 0
                  ? " (+" + std::to_string(s.failed_newton_iterations) + " in cut attempts)"
                  : std::string())
+         << (s.adaptive_stops > 0
+                 ? " (" + std::to_string(s.adaptive_stops) + " loop(s) stopped adaptively)"
+                 : std::string())
          << "  residual " << std::scientific << std::setprecision(2) << s.final_residual
          << " N, scaled " << s.final_scaled << std::defaultfloat << "  contact "
          << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
