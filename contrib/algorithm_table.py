@@ -36,6 +36,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tool_cli  # noqa: E402
+from compare import read_table  # noqa: E402
 from robustness_map import write_section  # noqa: E402
 
 # name, title, whether the one-step load path is run, compare.py's reference options
@@ -71,13 +72,6 @@ args = tool_cli.parse_with_workdir(parser)
 args.workdir = os.path.abspath(args.workdir)
 
 
-def number(text):
-    try:
-        return float(text)
-    except ValueError:
-        return None
-
-
 def compare(name, reference_options, settings, folder):
     """compare.py on a scene; its rows {(algorithm, stopping): row}, or the reason it failed."""
     command = [sys.executable, os.path.join(tool_cli.ROOT, "contrib", "compare.py"),
@@ -93,8 +87,7 @@ def compare(name, reference_options, settings, folder):
     table = os.path.join(folder, "compare.csv")
     if not os.path.exists(table):
         return f"compare.py exited with {result.returncode}: {(result.stdout + result.stderr).strip()[-300:]}"
-    with open(table, newline="") as f:
-        rows = [{k: (number(v) if number(v) is not None else v) for k, v in row.items()} for row in csv.DictReader(f)]
+    rows = read_table(table)
     with open(os.path.join(folder, "compare.md")) as f:
         reference = next((line for line in f if line.startswith(("Reference:", "**The reference run failed"))), "")
     return {(r["algorithm"], r["stopping"]): r for r in rows}, reference.strip()

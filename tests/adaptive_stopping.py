@@ -28,18 +28,21 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 patin = sltest.read_prm(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm",
                                      "patin_neo_hookean.prm"))
-runs = {}
-for mode in ("fixed", "adaptive"):
-    text = patin + f"""
+
+
+def stopping(scene, mode):
+    """The scene's text with `Stopping = mode`."""
+    return scene + f"""
 subsection Nonlinear solver
   set Stopping = {mode}
 end
-subsection Output
-  set Output directory = output
-end
 """
+
+
+runs = {}
+for mode in ("fixed", "adaptive"):
     out = os.path.join(workdir, mode)
-    if sltest.run_checked(executable, text, out, check, f"neo-Hookean patin, Stopping = {mode}"):
+    if sltest.run_checked(executable, stopping(patin, mode), out, check, f"neo-Hookean patin, Stopping = {mode}"):
         output = os.path.join(out, "output")
         profiles = sorted(p for p in os.listdir(output) if p.startswith("profile-"))
         runs[mode] = (sltest.read_csv(os.path.join(output, "run_summary.csv"))[0],
@@ -66,15 +69,8 @@ if len(runs) == 2:
 
 # 2 ranks: the same stops
 out = os.path.join(workdir, "adaptive-np2")
-code, log = sltest.run(executable, patin + """
-subsection Nonlinear solver
-  set Stopping = adaptive
-end
-subsection Output
-  set Output directory = output
-  set Write vtu = false
-end
-""", out, ranks=2, expect_success=False)
+code, log = sltest.run(executable, stopping(patin, "adaptive") + sltest.QUIET_OUTPUT, out, ranks=2,
+                       expect_success=False)
 check(code == 0, f"neo-Hookean patin, Stopping = adaptive, 2 ranks: exit code {code}")
 if code != 0:
     print(log[-2000:])
@@ -92,15 +88,7 @@ patin_3d = sltest.read_prm(os.path.join(os.path.dirname(os.path.abspath(__file__
 steps = {}
 for mode in ("fixed", "adaptive"):
     out = os.path.join(workdir, f"patin3d-{mode}")
-    text = patin_3d + f"""
-subsection Nonlinear solver
-  set Stopping = {mode}
-end
-subsection Output
-  set Output directory = output
-end
-"""
-    if sltest.run_checked(executable, text, out, check, f"3D patin, Stopping = {mode}"):
+    if sltest.run_checked(executable, stopping(patin_3d, mode), out, check, f"3D patin, Stopping = {mode}"):
         steps[mode] = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))
 if len(steps) == 2:
     fixed_3d, adaptive_3d = steps["fixed"], steps["adaptive"]

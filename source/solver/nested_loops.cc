@@ -81,7 +81,7 @@ namespace StabilizedLagrangian
     for (unsigned int j = 1; j <= solver_parameters.friction_max_iterations; ++j)
       {
         ++stats.friction_iterations;
-        const TrilinosWrappers::MPI::Vector previous = solution;
+        const TrilinosWrappers::MPI::Vector previous = adaptive_reference();
         if (!status_loop(stats, k, j))
           return false;
         const double change = update_friction_thresholds();
@@ -117,10 +117,8 @@ namespace StabilizedLagrangian
     // loop's update, not this loop's error.
     if (!solver_parameters.adaptive_stopping)
       return false;
-    TrilinosWrappers::MPI::Vector change(locally_owned, mpi_communicator);
-    for (const auto index : locally_owned_u)
-      change(index) = solution(index) - previous(index);
-    change.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector change = solution;
+    change -= previous;
     const double energy = displacement_energy(change);
     if (!below_discretisation_error(energy, relative_change))
       return false;
@@ -130,6 +128,13 @@ namespace StabilizedLagrangian
             << " sqrt(N mm), relative " << relative_change << ", estimated discretisation error "
             << last_estimate.error << " sqrt(N mm), relative " << last_estimate.relative() << "\n";
     return true;
+  }
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  ContactProblem<dim>::adaptive_reference() const
+  {
+    return solver_parameters.adaptive_stopping ? solution : TrilinosWrappers::MPI::Vector();
   }
 
   template <int dim>
@@ -162,7 +167,7 @@ namespace StabilizedLagrangian
     for (unsigned int i = 1; i <= solver_parameters.status_max_iterations; ++i)
       {
         ++stats.status_iterations;
-        const TrilinosWrappers::MPI::Vector previous = solution;
+        const TrilinosWrappers::MPI::Vector previous = adaptive_reference();
         if (!newton_loop(stats, k, j, i))
           return false;
         const unsigned int changes              = update_statuses();
@@ -253,22 +258,23 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                     \
-  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                       \
-  template double ContactProblem<dim>::relative_displacement_change(                            \
-      const TrilinosWrappers::MPI::Vector &) const;                                             \
-  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                           \
-  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);             \
-  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);   \
-  template bool ContactProblem<dim>::loop_stops_adaptively(                                     \
-      const TrilinosWrappers::MPI::Vector &, double, const char *, StepStatistics &);           \
-  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int); \
-  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;            \
-  template unsigned int               ContactProblem<dim>::first_equal(                         \
-      const std::vector<std::vector<unsigned char>> &,                            \
-      const std::vector<unsigned char> &,                                         \
-      unsigned int) const;                                                        \
-  template unsigned int ContactProblem<dim>::update_statuses();                                 \
+#define SL_INSTANTIATE(dim)                                                                                    \
+  template bool   ContactProblem<dim>::solve_load_step(StepStatistics &);                                      \
+  template double ContactProblem<dim>::relative_displacement_change(                                           \
+      const TrilinosWrappers::MPI::Vector &) const;                                                            \
+  template bool ContactProblem<dim>::geometry_loop(StepStatistics &);                                          \
+  template bool ContactProblem<dim>::friction_loop(StepStatistics &, unsigned int);                            \
+  template bool ContactProblem<dim>::fold_for_this_step(Loop, const std::function<bool()> &);                  \
+  template TrilinosWrappers::MPI::Vector ContactProblem<dim>::adaptive_reference() const;                      \
+  template bool                          ContactProblem<dim>::loop_stops_adaptively(                           \
+      const TrilinosWrappers::MPI::Vector &, double, const char *, StepStatistics &); \
+  template bool ContactProblem<dim>::status_loop(StepStatistics &, unsigned int, unsigned int);                \
+  template std::vector<unsigned char> ContactProblem<dim>::contact_statuses() const;                           \
+  template unsigned int               ContactProblem<dim>::first_equal(                                        \
+      const std::vector<std::vector<unsigned char>> &,                                           \
+      const std::vector<unsigned char> &,                                                        \
+      unsigned int) const;                                                                       \
+  template unsigned int ContactProblem<dim>::update_statuses();                                                \
   template double       ContactProblem<dim>::update_friction_thresholds();
 
   SL_INSTANTIATE(2)

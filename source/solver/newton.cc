@@ -269,9 +269,10 @@ namespace StabilizedLagrangian
     // answer beyond what the mesh resolves. The update's energy leaves out
     // the multipliers: the scaled residual, whose blocks include the gap and
     // the slip, stands for them.
-    // The estimate is made at every check: with one made per Newton loop
-    // and reused, the J2 patin's outer loops cycled (1445 Newton iterations
-    // against 124; doc/formulation.md, "Adaptive stopping").
+    // An earlier estimate only spares a check, never stops a loop: with one
+    // made per Newton loop and reused to stop, the J2 patin's outer loops
+    // cycled (1445 Newton iterations against 124; doc/formulation.md,
+    // "Adaptive stopping").
     if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
         !std::isfinite(progress.update_energy) ||
         !below_discretisation_error(progress.update_energy, scaled_residual))

@@ -501,6 +501,13 @@ namespace StabilizedLagrangian
      * the displacement change of its last iteration, solution − @p previous,
      * and @p relative_change, the measure of its own criterion.
      */
+    /**
+     * The displacement a loop's change is measured from with `Stopping =
+     * adaptive` (a copy of the solution); an empty vector otherwise, which
+     * loop_stops_adaptively() does not read.
+     */
+    TrilinosWrappers::MPI::Vector
+    adaptive_reference() const;
     bool
     loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
                           const double                         relative_change,
