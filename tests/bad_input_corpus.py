@@ -304,7 +304,7 @@ for name, mesh, expect in (
         ("v4_node_count.msh", GOOD_MSH4.replace("$Nodes\n1 6 1 6", "$Nodes\n1 7 1 7"), "announces 7 nodes"),
         ("v4_missing_node.msh", GOOD_MSH4.replace("5 1 2 5 4", "5 1 2 5 9"), "node 9"),
         ("v4_block_size.msh", GOOD_MSH4.replace("2 1 0 6\n", "2 1 0 60000\n"), "larger than the file"),
-        ("triangles.msh", GOOD_MSH.replace("5 3 2 3 1 1 2 5 4", "5 2 2 3 1 1 2 5"), "simplex"),
+        ("mixed_cells.msh", GOOD_MSH.replace("5 3 2 3 1 1 2 5 4", "5 2 2 3 1 1 2 5"), "mixes 1 simplices"),
         ("exit.geo", BLOCK_GEO.replace("NX", "2").replace("NY", "1") + "Exit;\n", "Exit"),
         ("endless.geo", "For i In {1:1e12}\nEndFor\n", "Meshing time limit"),
         ("huge.geo", BLOCK_GEO.replace("NX", "30000").replace("NY", "30000"), "huge.geo"),

@@ -9,7 +9,8 @@ block of hexahedra (prm/meshes/block3d.geo) pressed by a uniform pressure on
 its face named `top` has the contact pressure p on its face named `bottom`; a
 mistyped group name in the contact or a boundary-condition entry stops the run
 with exit 1 and a message naming the entry and listing the groups the file has;
-a missing mesh file and a mesh of triangles are refused with a message."""
+a missing mesh file is refused with a message; a mesh of triangles runs with
+the P1/P1 pair and is refused with a Q pair, by a message naming the P pairs."""
 import os
 import sys
 import sltest
@@ -132,5 +133,11 @@ with open(geo, "w") as f:
 text = gmsh_scene.replace(os.path.join(prm_dir, "meshes", "block.geo"), geo)
 check(geo in text, "the scene names the triangle mesh")
 code, log = sltest.run(executable, text, os.path.join(workdir, "triangles"), expect_success=False)
-check(code == 1 and "simplex cells" in log, f"a mesh of triangles: exit {code}, refused with a message")
+check(code == 1 and "Finite element pair = Q1/P1 is for quadrilaterals" in log and "P1/P1" in log,
+      f"a mesh of triangles with the Q1/P1 pair: exit {code}, refused with a message naming the P pairs")
+text = text.replace("set Finite element pair  = Q1/P1", "set Finite element pair  = P1/P1")
+check("P1/P1" in text, "the scene asks for P1/P1")
+code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, os.path.join(workdir, "triangles-p1"),
+                       expect_success=False)
+check(code == 0, f"the same mesh of triangles with P1/P1: exit {code}")
 check.finish()

@@ -60,7 +60,7 @@ def scene(name, **replacements):
     """The text of tests/scenes/<name>.prm with `@KEY@` placeholders replaced."""
     with open(os.path.join(os.path.dirname(__file__), "scenes", name + ".prm")) as f:
         text = f.read()
-    defaults = {"PAIR": "Q1/P1", "LOCAL": 0, "RADIUS": 0,
+    defaults = {"PAIR": "Q1/P1", "LOCAL": 0, "RADIUS": 0, "CELL_SHAPE": "hypercube",
                 "CENTER": "0, 0" if str(replacements.get("DIM", 2)) == "2" else "0, 0, 0"}
     for key, value in {**defaults, **replacements}.items():
         text = text.replace("@" + key + "@", str(value))

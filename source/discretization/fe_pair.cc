@@ -1,5 +1,6 @@
 #include <deal.II/fe/fe_face.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_trace.h>
 
@@ -21,8 +22,7 @@ namespace StabilizedLagrangian
                        const unsigned int multiplier_degree,
                        const bool         continuous_multiplier,
                        const bool         coarser_mesh = false)
-          : u_degree(displacement_degree)
-          , m_degree(multiplier_degree)
+          : FEPair<dim>(displacement_degree, multiplier_degree)
           , continuous(continuous_multiplier)
           , coarse(coarser_mesh)
       {
@@ -31,27 +31,15 @@ namespace StabilizedLagrangian
       std::unique_ptr<FiniteElement<dim>>
       displacement_element() const override
       {
-        return std::make_unique<FESystem<dim>>(FE_Q<dim>(u_degree), dim);
+        return std::make_unique<FESystem<dim>>(FE_Q<dim>(this->u_degree), dim);
       }
 
       std::unique_ptr<FiniteElement<dim>>
       multiplier_element(const unsigned int n_components) const override
       {
         if (continuous)
-          return std::make_unique<FESystem<dim>>(FE_TraceQ<dim>(m_degree), n_components);
-        return std::make_unique<FESystem<dim>>(FE_FaceQ<dim>(m_degree), n_components);
-      }
-
-      unsigned int
-      displacement_degree() const override
-      {
-        return u_degree;
-      }
-
-      unsigned int
-      multiplier_degree() const override
-      {
-        return m_degree;
+          return std::make_unique<FESystem<dim>>(FE_TraceQ<dim>(this->m_degree), n_components);
+        return std::make_unique<FESystem<dim>>(FE_FaceQ<dim>(this->m_degree), n_components);
       }
 
       bool
@@ -61,8 +49,7 @@ namespace StabilizedLagrangian
       }
 
     private:
-      const unsigned int u_degree, m_degree;
-      const bool         continuous, coarse;
+      const bool continuous, coarse;
     };
 
     SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
@@ -123,5 +110,73 @@ namespace StabilizedLagrangian
         1,
         2,
         true);
+
+    /**
+     * @brief Lagrange P_k displacement on triangles / tetrahedra with a
+     * continuous P_m multiplier: the boundary DoFs of a P_m field of the whole
+     * mesh, of which only those on Γc are kept (the other DoFs are numbered
+     * last and never enter the system, as the skeleton DoFs of FE_TraceQ).
+     */
+    template <int dim> class LagrangeSimplexPair : public FEPair<dim>
+    {
+    public:
+      LagrangeSimplexPair(const unsigned int displacement_degree,
+                          const unsigned int multiplier_degree)
+          : FEPair<dim>(displacement_degree, multiplier_degree)
+      {
+      }
+
+      std::unique_ptr<FiniteElement<dim>>
+      displacement_element() const override
+      {
+        return std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(this->u_degree), dim);
+      }
+
+      std::unique_ptr<FiniteElement<dim>>
+      multiplier_element(const unsigned int n_components) const override
+      {
+        return std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(this->m_degree), n_components);
+      }
+
+      bool
+      simplex() const override
+      {
+        return true;
+      }
+    };
+
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeSimplexPair,
+        "P1/P1",
+        "triangles / tetrahedra: P1 displacement, continuous piecewise-linear multipliers on its "
+        "boundary mesh (the seed's element, §3; inf-sup stable: the multiplier space is the "
+        "displacement trace)",
+        1,
+        1);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeSimplexPair,
+        "P2/P1",
+        "triangles / tetrahedra: P2 displacement, continuous piecewise-linear multipliers "
+        "(inf-sup stable)",
+        2,
+        1);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeSimplexPair,
+        "P2/P2",
+        "triangles / tetrahedra: P2 displacement, continuous piecewise-quadratic multipliers "
+        "(inf-sup stable: the multiplier space is the displacement trace)",
+        2,
+        2);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeSimplexPair,
+        "P1/P2",
+        "triangles / tetrahedra: P1 displacement, continuous piecewise-quadratic multipliers: "
+        "richer than the displacement trace, violates the inf-sup condition (β_h = 0)",
+        1,
+        2);
   } // namespace Discretization
 } // namespace StabilizedLagrangian

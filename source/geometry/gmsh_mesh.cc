@@ -261,8 +261,9 @@ namespace StabilizedLagrangian
           if (known == element_nodes.end())
             fail(index + 1,
                  "element type " + std::to_string(type) +
-                     " is not supported: lines (1), quadrilaterals (3), hexahedra (5) "
-                     "and points (15), i.e. first-order elements");
+                     " is not supported: lines (1), triangles (2), quadrilaterals (3), "
+                     "tetrahedra (4), hexahedra (5) and points (15), i.e. first-order "
+                     "elements");
           if (nodes.size() != known->second)
             fail(index + 1,
                  "an element of type " + std::to_string(type) + " has " +
@@ -410,8 +411,8 @@ namespace StabilizedLagrangian
      * library at start-up. Its physical groups name the boundaries (dimension
      * dim − 1, their tags become boundary ids) and the bodies (dimension dim,
      * material ids), so the `Boundary conditions` and `Contact` entries can
-     * refer to them by name. The cells must be quadrilaterals / hexahedra
-     * (`Recombine` in Gmsh).
+     * refer to them by name. The cells are quadrilaterals / hexahedra
+     * (`Recombine` in Gmsh) or triangles / tetrahedra, not both.
      */
     template <int dim> class GmshMesh : public Interface<dim>
     {
@@ -478,8 +479,14 @@ namespace StabilizedLagrangian
         read_spherical_boundaries(prm.get("Spherical boundaries"));
       }
 
+      bool
+      simplex_cells() const override
+      {
+        return simplex;
+      }
+
       void
-      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      create_mesh(Triangulation<dim> &triangulation) const override
       {
         triangulation.copy_triangulation(coarse);
         // manifold id k + 1 for the k-th sphere (0 would be the cells' default flat one)
@@ -529,11 +536,24 @@ namespace StabilizedLagrangian
             throw InputError("Geometry/gmsh/Mesh file: cannot read '" + file +
                              "' as a Gmsh mesh: " + Utilities::trim(message.str()));
           }
+        unsigned int n_simplices = 0;
         for (const auto &cell : coarse.active_cell_iterators())
-          if (!cell->reference_cell().is_hyper_cube())
-            throw InputError("Geometry/gmsh/Mesh file: '" + file +
-                             "' has simplex cells; the finite elements need quadrilaterals or "
-                             "hexahedra (Recombine in Gmsh).");
+          {
+            if (!cell->reference_cell().is_hyper_cube() && !cell->reference_cell().is_simplex())
+              throw InputError("Geometry/gmsh/Mesh file: '" + file + "' has " +
+                               cell->reference_cell().to_string() +
+                               " cells; the mesh must be made of quadrilaterals or hexahedra, "
+                               "or of triangles or tetrahedra.");
+            n_simplices += cell->reference_cell().is_simplex();
+          }
+        simplex = n_simplices > 0;
+        if (simplex && n_simplices != coarse.n_active_cells())
+          throw InputError("Geometry/gmsh/Mesh file: '" + file + "' mixes " +
+                           std::to_string(n_simplices) + " simplices with " +
+                           std::to_string(coarse.n_active_cells() - n_simplices) +
+                           " hypercube cells; the finite element pairs need one cell shape "
+                           "(all triangles/tetrahedra, or all quadrilaterals/hexahedra: "
+                           "Recombine in Gmsh).");
       }
 
       /**
@@ -614,6 +634,7 @@ namespace StabilizedLagrangian
       const std::string                                      file;
       const unsigned int                                     refinements;
       Triangulation<dim>                                     coarse;
+      bool                                                   simplex = false;
       std::vector<std::pair<types::boundary_id, Point<dim>>> spheres;
       std::map<std::string, types::boundary_id>              boundaries;
       std::map<std::string, types::material_id>              bodies;

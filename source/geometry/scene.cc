@@ -18,10 +18,10 @@ namespace StabilizedLagrangian
       /** Refine @p steps times the cells whose centre lies within @p radius of @p center. */
       template <int dim>
       void
-      refine_near(parallel::distributed::Triangulation<dim> &triangulation,
-                  const Point<dim>                          &center,
-                  const double                               radius,
-                  const unsigned int                         steps)
+      refine_near(Triangulation<dim> &triangulation,
+                  const Point<dim>   &center,
+                  const double        radius,
+                  const unsigned int  steps)
       {
         for (unsigned int step = 0; step < steps; ++step)
           {
@@ -30,6 +30,57 @@ namespace StabilizedLagrangian
                 cell->set_refine_flag();
             triangulation.execute_coarsening_and_refinement();
           }
+      }
+
+      void
+      declare_cell_shape(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+            "Cell shape",
+            "hypercube",
+            Patterns::Selection("hypercube|simplex"),
+            "hypercube: quadrilaterals (2D) or hexahedra (3D). simplex: each cell of the "
+            "uniformly refined mesh split into 8 triangles (2D) or 24 tetrahedra (3D); the "
+            "local refinements then refine the simplices (2D only: deal.II 9.4 has no "
+            "hanging-node constraints on tetrahedra). Simplex meshes need a P pair "
+            "(Contact/Finite element pair = P1/P1, P2/P1, P2/P2, P1/P2).");
+      }
+
+      /** Whether `Cell shape` asks for simplices; refuse what they cannot do. */
+      template <int dim>
+      bool
+      read_cell_shape(const ParameterHandler &prm,
+                      const std::string      &geometry,
+                      const bool              local_refinement)
+      {
+        const bool simplex = prm.get("Cell shape") == "simplex";
+        if (simplex && dim == 3 && local_refinement)
+          throw InputError("Geometry/" + geometry +
+                           "/Local refinements must be 0 with Cell shape = simplex in 3D: "
+                           "deal.II 9.4 cannot constrain the hanging nodes of tetrahedra. "
+                           "Refine uniformly (Global refinements) instead.");
+        return simplex;
+      }
+
+      /**
+       * Replace the uniformly refined hypercube mesh @p triangulation (serial)
+       * by its split into simplices, keeping boundary and material ids.
+       */
+      template <int dim>
+      void
+      split_into_simplices(Triangulation<dim> &triangulation)
+      {
+        // the manifolds place the new vertices (edge and face midpoints) on curved boundaries
+        Triangulation<dim> flat;
+        GridGenerator::flatten_triangulation(triangulation, flat);
+        for (const auto id : triangulation.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            flat.set_manifold(id, triangulation.get_manifold(id));
+        triangulation.clear();
+        GridGenerator::convert_hypercube_to_simplex_mesh(flat, triangulation);
+        for (const auto id : flat.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            triangulation.set_manifold(id, flat.get_manifold(id));
       }
     } // namespace
 
@@ -66,6 +117,7 @@ namespace StabilizedLagrangian
                           "0",
                           Patterns::Double(0.),
                           "Radius of the locally refined region (mm).");
+        declare_cell_shape(prm);
       }
 
       explicit Block(const ParameterHandler &prm)
@@ -75,6 +127,8 @@ namespace StabilizedLagrangian
           , refinements(prm.get_integer("Global refinements"))
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
+          , simplex(
+                read_cell_shape<dim>(prm, "block", local_refinements > 0 && refinement_radius > 0.))
       {
         const auto coordinates = Utilities::split_string_list(prm.get("Local refinement center"));
         for (unsigned int d = 0; d < dim; ++d)
@@ -85,8 +139,14 @@ namespace StabilizedLagrangian
           throw InputError("Geometry/block: Length, Height and Width must be > 0.");
       }
 
+      bool
+      simplex_cells() const override
+      {
+        return simplex;
+      }
+
       void
-      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      create_mesh(Triangulation<dim> &triangulation) const override
       {
         Point<dim> lower, upper;
         lower[0]       = -length / 2.;
@@ -110,6 +170,8 @@ namespace StabilizedLagrangian
                   face->set_boundary_id(renumber.at(face->boundary_id()));
           }
         triangulation.refine_global(refinements);
+        if (simplex)
+          split_into_simplices(triangulation);
         refine_near(triangulation, refinement_center, refinement_radius, local_refinements);
       }
 
@@ -117,6 +179,7 @@ namespace StabilizedLagrangian
       const double              length, height, width;
       const unsigned int        refinements, local_refinements;
       const double              refinement_radius;
+      const bool                simplex;
       Point<dim>                refinement_center;
       std::vector<unsigned int> subdivisions;
     };
@@ -152,6 +215,7 @@ namespace StabilizedLagrangian
                           "Curved faces within this distance (mm) of the lowest point form "
                           "the candidate contact surface (id 2). When it is larger than the "
                           "local refinement radius, the contact mesh has hanging nodes.");
+        declare_cell_shape(prm);
       }
 
       explicit HalfBall(const ParameterHandler &prm)
@@ -160,13 +224,21 @@ namespace StabilizedLagrangian
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , contact_radius(prm.get_double("Contact zone radius"))
+          , simplex(read_cell_shape<dim>(
+                prm, "half ball", local_refinements > 0 && refinement_radius > 0.))
       {
         if (!(radius > 0.))
           throw InputError("Geometry/half ball/Radius must be > 0.");
       }
 
+      bool
+      simplex_cells() const override
+      {
+        return simplex;
+      }
+
       void
-      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const override
+      create_mesh(Triangulation<dim> &triangulation) const override
       {
         GridGenerator::half_hyper_ball(triangulation, Point<dim>(), radius);
         double min_x = 0.;
@@ -188,6 +260,8 @@ namespace StabilizedLagrangian
         center[dim - 1] = radius;
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
         triangulation.refine_global(global_refinements);
+        if (simplex)
+          split_into_simplices(triangulation);
         refine_near(triangulation, Point<dim>(), refinement_radius, local_refinements);
         for (const auto &cell : triangulation.active_cell_iterators())
           for (const auto &face : cell->face_iterators())
@@ -212,7 +286,7 @@ namespace StabilizedLagrangian
        * has no multiplier. (In 2D the boundary has no hanging vertices.)
        */
       static void
-      close_contact_zone(parallel::distributed::Triangulation<dim> &triangulation)
+      close_contact_zone(Triangulation<dim> &triangulation)
       {
         const std::function<void(const typename Triangulation<dim>::face_iterator &)> join =
             [&join](const typename Triangulation<dim>::face_iterator &face) {
@@ -232,6 +306,7 @@ namespace StabilizedLagrangian
       const double       radius;
       const unsigned int global_refinements, local_refinements;
       const double       refinement_radius, contact_radius;
+      const bool         simplex;
     };
 
     SL_REGISTER_PLUGIN(Interface,

@@ -4,6 +4,7 @@
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/numerics/data_out.h>
@@ -232,8 +233,11 @@ namespace StabilizedLagrangian
     // the larger of the two degrees: the vertices for Q1/P1, also the
     // midsides for quadratic pairs): every node goes into the profile, in
     // reference coordinates; the vertices also into the vertex fields.
-    const QGaussLobatto<dim - 1> node_quadrature(
-        std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}) + 1);
+    // (on triangle faces the vertices only: see face_nodes())
+    const Quadrature<dim - 1> node_quadrature = face_nodes(
+        (dim == 3 && simplex_mesh())
+            ? 1u
+            : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
     FaceEvaluator evaluator(*this, node_quadrature, false);
     for (const auto &face : contact_faces)
       {
@@ -250,7 +254,7 @@ namespace StabilizedLagrangian
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
             profile.insert(profile.end(), values.begin(), values.end());
-            for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_face; ++v)
+            for (const unsigned int v : vertex_face->vertex_indices())
               if (vertex_face->vertex(v).distance(X) < tolerance)
                 for (unsigned int c = 0; c < n_components; ++c)
                   {
@@ -277,8 +281,10 @@ namespace StabilizedLagrangian
     unsigned int                    n_components = 0;
     for (const auto &field : fields)
       n_components += field.components;
-    // the contact fields at the vertices of Γc, on a Q1 field (zero elsewhere)
-    const FESystem<dim> fe_fields(FE_Q<dim>(1), n_components);
+    // the contact fields at the vertices of Γc, on a Q1 (P1) field (zero elsewhere)
+    const FESystem<dim> fe_fields = simplex_mesh()
+                                        ? FESystem<dim>(FE_SimplexP<dim>(1), n_components)
+                                        : FESystem<dim>(FE_Q<dim>(1), n_components);
     DoFHandler<dim>     field_dofs(triangulation);
     field_dofs.distribute_dofs(fe_fields);
     partner->update_configuration(ghosted_solution);

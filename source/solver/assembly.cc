@@ -286,7 +286,7 @@ namespace StabilizedLagrangian
     const FiniteElement<dim> &fe = *fe_u;
     FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
     FEFaceValues<dim>         neumann_values(fe,
-                                     QGauss<dim - 1>(fe_pair->displacement_degree() + 1),
+                                     face_gauss(fe_pair->displacement_degree() + 1),
                                      update_values | update_quadrature_points | update_JxW_values);
     const unsigned int        n_dofs = fe.n_dofs_per_cell();
     const unsigned int        n_q    = cell_quadrature.size();

@@ -51,7 +51,9 @@ namespace StabilizedLagrangian
     // if w_a = ∫_F ℓ_a dΓ. The Gauss–Lobatto weight times the Jacobian at the
     // node is that integral where the Jacobian is constant (a straight edge, a
     // parallelogram face), not elsewhere (a distorted hexahedron's face).
-    if (contact_parameters.quadrature != Parameters::ContactQuadrature::gauss_lobatto)
+    // (linear triangles have a constant Jacobian: their vertex weights are consistent)
+    if (contact_parameters.quadrature != Parameters::ContactQuadrature::gauss_lobatto ||
+        (dim == 3 && simplex_mesh()))
       return;
     const unsigned int n_1d =
         static_cast<unsigned int>(std::lround(std::pow(contact_quadrature.size(), 1. / (dim - 1))));
@@ -141,14 +143,13 @@ namespace StabilizedLagrangian
     m_dofs.clear();
     m_local.clear();
     m_coefficients.clear();
-    for (unsigned int i = 0; i < all_m.size(); ++i)
-      if (problem.fe_m->has_support_on_face(i, face.face_no))
-        {
-          Assert(all_m[i] < problem.n_multipliers, ExcInternalError());
-          m_local.push_back(i);
-          m_dofs.push_back(problem.n_u + all_m[i]);
-          m_coefficients.push_back(ghosted(problem.n_u + all_m[i]));
-        }
+    for (const unsigned int i : problem.multiplier_face_dofs(face.face_no))
+      {
+        Assert(all_m[i] < problem.n_multipliers, ExcInternalError());
+        m_local.push_back(i);
+        m_dofs.push_back(problem.n_u + all_m[i]);
+        m_coefficients.push_back(ghosted(problem.n_u + all_m[i]));
+      }
 
     const FiniteElement<dim> &fe = *problem.fe_u;
     for (unsigned int q = 0; q < u_now.size(); ++q)

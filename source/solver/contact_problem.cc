@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
@@ -15,9 +16,9 @@ namespace StabilizedLagrangian
       : mpi_communicator(MPI_COMM_WORLD)
       , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
-      , triangulation(mpi_communicator,
-                      typename Triangulation<dim>::MeshSmoothing(
-                          Triangulation<dim>::limit_level_difference_at_vertices))
+      , geometry(Geometry::create<dim>(prm))
+      , triangulation_storage(new_triangulation(mpi_communicator, geometry->simplex_cells()))
+      , triangulation(*triangulation_storage)
       , dof_handler_u(triangulation)
       , dof_handler_m(triangulation)
       , verbose(verbose)
@@ -32,7 +33,6 @@ namespace StabilizedLagrangian
     output_parameters.parse_parameters(prm);
     adaptive_refinement.parse_parameters(prm);
 
-    geometry  = Geometry::create<dim>(prm);
     obstacle  = Obstacles::create<dim>(prm);
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
@@ -125,10 +125,103 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
+  std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
+  ContactProblem<dim>::new_triangulation(const MPI_Comm &communicator, const bool simplex)
+  {
+    if (simplex)
+      return std::make_unique<parallel::fullydistributed::Triangulation<dim>>(communicator);
+    return std::make_unique<parallel::distributed::Triangulation<dim>>(
+        communicator,
+        typename Triangulation<dim>::MeshSmoothing(
+            Triangulation<dim>::limit_level_difference_at_vertices));
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::distribute_simplex_mesh()
+  {
+    Triangulation<dim> serial;
+    geometry->create_mesh(serial);
+    serial.refine_global(extra_refinements);
+    if (serial.has_hanging_nodes() && fe_pair->displacement_degree() > 1 &&
+        Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+      throw InputError(
+          "Geometry: a locally refined simplex mesh with the quadratic pair " +
+          contact_parameters.fe_pair +
+          " runs on one MPI rank only: deal.II 9.4 cannot constrain the hanging nodes of P2 "
+          "next to another rank's cells. Use P1/P1, one rank, or uniform refinement only "
+          "(Local refinements = 0).");
+    // METIS is deterministic: the same ranks get the same cells in every run (restart)
+    GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
+    const auto description =
+        TriangulationDescription::Utilities::create_description_from_triangulation(
+            serial, mpi_communicator);
+    triangulation.clear();
+    for (const auto id : serial.get_manifold_ids())
+      if (id != numbers::flat_manifold_id)
+        triangulation.set_manifold(id, serial.get_manifold(id));
+    triangulation.create_triangulation(description);
+    // The faces between this rank's ghost layer and the cells it does not
+    // hold are boundary faces of its local mesh, with the default id 0, a
+    // user's id: move them to an id of their own, so that no boundary or
+    // contact condition sees them.
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() &&
+            !serial.create_cell_iterator(cell->id())->face(f)->at_boundary())
+          cell->face(f)->set_boundary_id(ghost_layer_boundary_id);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::refine_globally()
+  {
+    if (simplex_mesh())
+      {
+        ++extra_refinements;
+        distribute_simplex_mesh();
+      }
+    else
+      triangulation.refine_global(1);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::check_cell_shape() const
+  {
+    const std::string pair = "Contact/Finite element pair = " + contact_parameters.fe_pair;
+    if (fe_pair->simplex() && !simplex_mesh())
+      throw InputError(pair + " is for triangles / tetrahedra; the mesh has " +
+                       (dim == 2 ? "quadrilaterals" : "hexahedra") +
+                       ": use a Q pair (Q1/P1, Q2/P1, Q2/P2, ...) or a simplex mesh "
+                       "(Geometry/.../Cell shape = simplex, or a Gmsh mesh of " +
+                       (dim == 2 ? "triangles)." : "tetrahedra)."));
+    if (!fe_pair->simplex() && simplex_mesh())
+      throw InputError(pair + " is for quadrilaterals / hexahedra; the mesh has " +
+                       (dim == 2 ? "triangles" : "tetrahedra") +
+                       ": use a P pair (P1/P1, P2/P1, P2/P2, or P1/P2 to see an unstable one).");
+    if (!simplex_mesh())
+      return;
+    if (adaptive_refinement.cycles > 0)
+      throw InputError("Adaptive refinement/Cycles must be 0 on a simplex mesh: its "
+                       "distributed triangulation (deal.II 9.4's fully distributed one; p4est "
+                       "holds only hypercubes) cannot be refined in place. Refine the mesh "
+                       "uniformly with Geometry/.../Global refinements.");
+    if (dim == 3 && !contact_parameters.master_ids.empty())
+      throw InputError("Contact/Master boundary ids: contact between two deformable bodies "
+                       "meshed with tetrahedra needs the segment integration of triangle "
+                       "faces, which is not built yet; in 3D mesh the bodies with hexahedra.");
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::make_grid()
   {
-    geometry->create_mesh(triangulation);
+    check_cell_shape();
+    if (simplex_mesh())
+      distribute_simplex_mesh();
+    else
+      geometry->create_mesh(triangulation);
     resolve_boundaries();
     assign_material_slots();
     for (const auto &bc : boundary_conditions.dirichlet)
@@ -141,9 +234,12 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::require_boundary(const types::boundary_id id, const std::string &entry) const
   {
+    // (a rank of a fully distributed mesh sees only the boundaries near its cells)
     std::set<types::boundary_id> mesh_ids;
     for (const auto mesh_id : triangulation.get_boundary_ids())
-      mesh_ids.insert(mesh_id);
+      if (mesh_id != ghost_layer_boundary_id)
+        mesh_ids.insert(mesh_id);
+    mesh_ids = Utilities::MPI::compute_set_union(mesh_ids, mpi_communicator);
     if (mesh_ids.count(id) == 0)
       throw InputError(entry + " = " + std::to_string(id) +
                        ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +

@@ -89,14 +89,13 @@ namespace StabilizedLagrangian
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
-    cell_quadrature             = QGauss<dim>(u_degree + 1);
+    cell_quadrature             = cell_gauss(u_degree + 1);
     if (contact_parameters.quadrature == Parameters::ContactQuadrature::gauss)
-      contact_quadrature = QGauss<dim - 1>(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
+      contact_quadrature = face_gauss(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
     else
       // nodal for the multiplier when it is at least as rich as the displacement
       // trace; otherwise enough points to integrate ψ φ·n exactly
-      contact_quadrature =
-          QGaussLobatto<dim - 1>(std::max({fe_pair->multiplier_degree(), u_degree, 1u}) + 1);
+      contact_quadrature = face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
 
     hanging_constraints.clear();
     hanging_constraints.reinit(locally_relevant);
@@ -130,6 +129,23 @@ namespace StabilizedLagrangian
     for (const auto &[row, component] : owned_multiplier_components)
       residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
     residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  Quadrature<dim - 1>
+  ContactProblem<dim>::face_nodes(const unsigned int degree) const
+  {
+    if (!simplex_mesh() || dim == 2)
+      return QGaussLobatto<dim - 1>(degree + 1);
+    if (degree > 1)
+      throw InputError("Contact/Contact quadrature = Gauss-Lobatto needs degree 1 on tetrahedra "
+                       "(P1/P1): the quadratic nodal weights of a triangle vanish at its "
+                       "vertices. Use Contact quadrature = Gauss with " +
+                       contact_parameters.fe_pair + ".");
+    std::vector<Point<dim - 1>> vertices;
+    for (const unsigned int v : ReferenceCells::get_simplex<dim - 1>().vertex_indices())
+      vertices.push_back(ReferenceCells::get_simplex<dim - 1>().template vertex<dim - 1>(v));
+    return Quadrature<dim - 1>(vertices, std::vector<double>(vertices.size(), 1. / 6.));
   }
 
   template <int dim>
@@ -390,9 +406,10 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                       \
-  template void ContactProblem<dim>::setup_dofs();                                                \
-  template void ContactProblem<dim>::add_multiplier_hanging_node_constraints(                     \
-      AffineConstraints<double> &) const;                                                         \
+  template void                ContactProblem<dim>::setup_dofs();                                 \
+  template Quadrature<dim - 1> ContactProblem<dim>::face_nodes(const unsigned int) const;         \
+  template void                ContactProblem<dim>::add_multiplier_hanging_node_constraints(      \
+      AffineConstraints<double> &) const;                                          \
   template void ContactProblem<dim>::add_multiplier_coarsening_constraints(                       \
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \

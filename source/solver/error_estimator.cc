@@ -119,8 +119,9 @@ namespace StabilizedLagrangian
     unsigned int nearest = 0;
     if (material_of(cell).n_history() > 0)
       {
-        const Point<dim> unit =
-            StaticMappingQ1<dim>::mapping.transform_real_to_unit_cell(cell, point);
+        const Point<dim> unit = cell->reference_cell()
+                                    .template get_default_linear_mapping<dim>()
+                                    .transform_real_to_unit_cell(cell, point);
         for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
           if (cell_quadrature.point(q).distance(unit) <
               cell_quadrature.point(nearest).distance(unit))
@@ -172,8 +173,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_face_residuals(const TrilinosWrappers::MPI::Vector &u,
                                           Vector<double>                      &squared)
   {
-    const QGauss<dim - 1> face_quadrature(fe_u->degree + 1);
-    const UpdateFlags     flags =
+    const Quadrature<dim - 1> face_quadrature = face_gauss(fe_u->degree + 1);
+    const UpdateFlags         flags =
         update_gradients | update_normal_vectors | update_quadrature_points | update_JxW_values;
     FEInterfaceValues<dim>           interface(*fe_u, face_quadrature, flags);
     FEFaceValues<dim>                boundary(*fe_u, face_quadrature, flags);
@@ -185,26 +186,50 @@ namespace StabilizedLagrangian
     // seen from either side, so it is computed once: by the side of lower
     // index when both cells are this rank's, by the own side when the other is
     // a ghost (whose owner adds its half).
-    const auto add_jump = [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
-                              const double                                          h) {
+    using TriaCell      = typename Triangulation<dim>::cell_iterator;
+    const auto add_jump = [&](const TriaCell                    &a,
+                              const FEFaceValuesBase<dim>       &on_a,
+                              const std::vector<Tensor<2, dim>> &gradients_a,
+                              const TriaCell                    &b,
+                              const std::vector<Tensor<2, dim>> &gradients_b,
+                              const double                       h) {
+      double jump = 0.;
+      for (unsigned int q = 0; q < on_a.n_quadrature_points; ++q)
+        {
+          const Point<dim> &x = on_a.quadrature_point(q);
+          jump += ((stress_at(a, gradients_a[q], x) - stress_at(b, gradients_b[q], x)) *
+                   on_a.normal_vector(q))
+                      .norm_square() *
+                  on_a.JxW(q);
+        }
+      for (const TriaCell &side : {a, b})
+        if (side->is_locally_owned())
+          squared[side->active_cell_index()] += 0.5 * h * jump / material_of(side).youngs_modulus();
+    };
+    const auto add_interface_jump = [&](const TriaCell &cell, const double h) {
       const auto &own   = interface.get_fe_face_values(0);
       const auto &other = interface.get_fe_face_values(1);
       own[displacement].get_function_gradients(u, inside);
       other[displacement].get_function_gradients(u, outside);
-      const typename Triangulation<dim>::cell_iterator neighbor = other.get_cell();
-      double                                           jump     = 0.;
-      for (unsigned int q = 0; q < own.n_quadrature_points; ++q)
-        {
-          const Point<dim> &x = own.quadrature_point(q);
-          jump += ((stress_at(cell, inside[q], x) - stress_at(neighbor, outside[q], x)) *
-                   own.normal_vector(q))
-                      .norm_square() *
-                  own.JxW(q);
-        }
-      squared[cell->active_cell_index()] += 0.5 * h * jump / material_of(cell).youngs_modulus();
-      if (neighbor->is_locally_owned())
-        squared[neighbor->active_cell_index()] +=
-            0.5 * h * jump / material_of(neighbor).youngs_modulus();
+      add_jump(cell, own, inside, other.get_cell(), outside, h);
+    };
+    // Simplex meshes (deal.II 9.4 has no FESubfaceValues for them): across a
+    // hanging face, the fine side's face rule, and the coarse side's gradients
+    // at the same points through its inverse mapping.
+    const auto add_hanging_jump = [&](const typename DoFHandler<dim>::active_cell_iterator &fine,
+                                      const unsigned int                                    face,
+                                      const typename DoFHandler<dim>::cell_iterator &coarse) {
+      boundary.reinit(fine, face);
+      boundary[displacement].get_function_gradients(u, inside);
+      const Mapping<dim> &mapping =
+          coarse->reference_cell().template get_default_linear_mapping<dim>();
+      std::vector<Point<dim>> unit(face_quadrature.size());
+      for (unsigned int q = 0; q < unit.size(); ++q)
+        unit[q] = mapping.transform_real_to_unit_cell(coarse, boundary.quadrature_point(q));
+      FEValues<dim> coarse_values(mapping, *fe_u, Quadrature<dim>(unit), update_gradients);
+      coarse_values.reinit(coarse);
+      coarse_values[displacement].get_function_gradients(u, outside);
+      add_jump(fine, boundary, inside, coarse, outside, fine->face(face)->diameter());
     };
     const auto computes = [](const typename DoFHandler<dim>::active_cell_iterator &cell,
                              const typename DoFHandler<dim>::active_cell_iterator &neighbor) {
@@ -226,17 +251,29 @@ namespace StabilizedLagrangian
                   const auto fine = cell->neighbor_child_on_subface(f, s);
                   if (!computes(cell, fine))
                     continue;
+                  if (simplex_mesh())
+                    {
+                      for (const unsigned int g : fine->face_indices())
+                        if (!fine->face(g)->at_boundary() && fine->neighbor(g) == cell)
+                          add_hanging_jump(fine, g, cell);
+                      continue;
+                    }
                   interface.reinit(cell, f, s, fine, cell->neighbor_of_neighbor(f), none);
-                  add_jump(cell, cell->face(f)->child(s)->diameter());
+                  add_interface_jump(cell, cell->face(f)->child(s)->diameter());
                 }
             else if (cell->neighbor_is_coarser(f))
               {
                 if (!computes(cell, cell->neighbor(f)))
                   continue;
+                if (simplex_mesh())
+                  {
+                    add_hanging_jump(cell, f, cell->neighbor(f));
+                    continue;
+                  }
                 const auto [neighbor_face, neighbor_subface] =
                     cell->neighbor_of_coarser_neighbor(f);
                 interface.reinit(cell, f, none, cell->neighbor(f), neighbor_face, neighbor_subface);
-                add_jump(cell, cell->face(f)->diameter());
+                add_interface_jump(cell, cell->face(f)->diameter());
               }
             else
               {
@@ -244,7 +281,7 @@ namespace StabilizedLagrangian
                   continue;
                 interface.reinit(
                     cell, f, none, cell->neighbor(f), cell->neighbor_of_neighbor(f), none);
-                add_jump(cell, cell->face(f)->diameter());
+                add_interface_jump(cell, cell->face(f)->diameter());
               }
           }
       }
@@ -381,11 +418,12 @@ namespace StabilizedLagrangian
     // ‖p* − λ_n‖ / ‖λ_n‖ on Γc, p* = −N·P*N from the recovered stress P*,
     // with a Gauss rule two orders above the pair's on each face: between
     // the nodes is where a linear λ_n departs most from a curved pressure
-    const QGauss<dim - 1> rule(fe_u->degree + 2);
-    FaceEvaluator         evaluator(*this, rule, false);
+    const Quadrature<dim - 1> rule = face_gauss(fe_u->degree + 2);
+    FaceEvaluator             evaluator(*this, rule, false);
     FEFaceValues<dim> face_values(*fe_u, rule, update_normal_vectors | update_quadrature_points);
-    const QGauss<dim> barlow(fe_u->degree);
-    FEValues<dim>     barlow_values(*fe_u, barlow, update_gradients | update_quadrature_points);
+    // (on simplices the Gauss points of the same order: the centroid for P1)
+    const Quadrature<dim> barlow = cell_gauss(fe_u->degree);
+    FEValues<dim>         barlow_values(*fe_u, barlow, update_gradients | update_quadrature_points);
     std::vector<Tensor<2, dim>> gradients(barlow.size());
     StressRecovery<dim>         recovery(dof_handler_u, fe_u->degree, [&](const auto &cell) {
       barlow_values.reinit(cell);
@@ -400,12 +438,16 @@ namespace StabilizedLagrangian
     });
     // the faces that hold the end of the contact zone: the square-root onset
     // fitted to their contact points, integrated finely across its kink
-    FaceEvaluator            nodes(*this, contact_quadrature);
-    const QIterated<dim - 1> edge_rule(QGauss<1>(2), dim == 2 ? 16 : 8);
-    FaceEvaluator            edge_evaluator(*this, edge_rule, false);
-    FEFaceValues<dim>        edge_values(*fe_u, edge_rule, update_quadrature_points);
-    const double             master_compliance = deformable_master_compliance();
-    double                   mismatch = 0., norm = 0.;
+    FaceEvaluator nodes(*this, contact_quadrature);
+    // (the finest simplex rule on triangle faces)
+    const Quadrature<dim - 1> edge_rule =
+        (dim == 3 && simplex_mesh())
+            ? face_gauss(4)
+            : Quadrature<dim - 1>(QIterated<dim - 1>(QGauss<1>(2), dim == 2 ? 16 : 8));
+    FaceEvaluator     edge_evaluator(*this, edge_rule, false);
+    FEFaceValues<dim> edge_values(*fe_u, edge_rule, update_quadrature_points);
+    const double      master_compliance = deformable_master_compliance();
+    double            mismatch = 0., norm = 0.;
     // the mismatch at the points of a face evaluator against a pressure
     const auto add_mismatch = [&](const FaceEvaluator &at, const auto &pressure) {
       for (unsigned int q = 0; q < at.n_points(); ++q)

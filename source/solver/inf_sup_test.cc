@@ -156,8 +156,8 @@ namespace StabilizedLagrangian
       FullMatrix<double>                                    &gram_m) const
   {
     // a Gauss rule exact for both
-    const QGauss<dim - 1> quadrature(
-        std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
+    const Quadrature<dim - 1> quadrature =
+        face_gauss(std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
     const unsigned int        n_dofs = fe_u->n_dofs_per_cell();
     std::vector<unsigned int> component(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
@@ -238,7 +238,7 @@ namespace StabilizedLagrangian
       {
         if (mesh > 1)
           {
-            triangulation.refine_global(1);
+            refine_globally();
             setup_after_refinement();
           }
         const InfSupRecord r = compute_inf_sup_constant();

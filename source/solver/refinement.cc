@@ -94,12 +94,14 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::mark_for_refinement(const Vector<float> &indicators)
   {
+    // adaptive refinement is refused on simplex meshes (check_cell_shape): the mesh is p4est's
+    auto &p4est_mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
     if (adaptive_refinement.bulk_marking)
       parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
-          triangulation, indicators, adaptive_refinement.fraction, 0., VectorTools::L2_norm);
+          p4est_mesh, indicators, adaptive_refinement.fraction, 0., VectorTools::L2_norm);
     else
       parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-          triangulation, indicators, adaptive_refinement.fraction, 0.);
+          p4est_mesh, indicators, adaptive_refinement.fraction, 0.);
   }
 
   template <int dim>

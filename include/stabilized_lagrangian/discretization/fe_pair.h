@@ -16,11 +16,19 @@ namespace StabilizedLagrangian
      * (doc/formulation.md, "Unknowns and spaces").
      *
      * The multiplier element is a face element (FE_TraceQ, FE_FaceQ) on the
-     * same triangulation; only its degrees of freedom on Γc are kept.
+     * same triangulation, or on simplices a continuous P_k field of the whole
+     * mesh (deal.II has no trace element for them); only its degrees of
+     * freedom on Γc are kept.
      */
     template <int dim> class FEPair
     {
     public:
+      FEPair(const unsigned int displacement_degree, const unsigned int multiplier_degree)
+          : u_degree(displacement_degree)
+          , m_degree(multiplier_degree)
+      {
+      }
+
       virtual ~FEPair() = default;
 
       /** @brief Vector-valued element of the displacement (dim components). */
@@ -35,12 +43,18 @@ namespace StabilizedLagrangian
       multiplier_element(const unsigned int n_components) const = 0;
 
       /** @brief Polynomial degree of the displacement, for the quadrature. */
-      virtual unsigned int
-      displacement_degree() const = 0;
+      unsigned int
+      displacement_degree() const
+      {
+        return u_degree;
+      }
 
       /** @brief Polynomial degree of the multiplier, for the contact quadrature. */
-      virtual unsigned int
-      multiplier_degree() const = 0;
+      unsigned int
+      multiplier_degree() const
+      {
+        return m_degree;
+      }
 
       /**
        * @brief Whether the multiplier lives on the contact mesh coarsened once
@@ -51,6 +65,16 @@ namespace StabilizedLagrangian
       {
         return false;
       }
+
+      /** @brief Whether the pair is for triangles / tetrahedra (P_k) rather than Q_k cells. */
+      virtual bool
+      simplex() const
+      {
+        return false;
+      }
+
+    protected:
+      const unsigned int u_degree, m_degree;
     };
 
     /** @brief The registry of FE pairs for dimension @p dim. */

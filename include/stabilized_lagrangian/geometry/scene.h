@@ -1,6 +1,6 @@
 #pragma once
 
-#include <deal.II/distributed/tria.h>
+#include <deal.II/grid/tria.h>
 
 #include <stabilized_lagrangian/plugins.h>
 
@@ -28,9 +28,20 @@ namespace StabilizedLagrangian
     public:
       virtual ~Interface() = default;
 
-      /** @brief Build the (refined) mesh and set its boundary ids. */
+      /**
+       * @brief Build the (refined) mesh and set its boundary ids. The
+       * triangulation is distributed (p4est) for hypercube cells and serial
+       * for simplex cells (ContactProblem distributes it afterwards).
+       */
       virtual void
-      create_mesh(parallel::distributed::Triangulation<dim> &triangulation) const = 0;
+      create_mesh(Triangulation<dim> &triangulation) const = 0;
+
+      /** @brief Whether the mesh is made of triangles (2D) or tetrahedra (3D). */
+      virtual bool
+      simplex_cells() const
+      {
+        return false;
+      }
 
       /**
        * @brief Names of boundaries (a mesh file's physical groups of dimension

@@ -6,6 +6,7 @@
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/timer.h>
 
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/distributed/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -705,6 +706,65 @@ namespace StabilizedLagrangian
     // --- contact_problem.cc: the mesh, and the setup after each refinement ---
     void
     make_grid();
+    /**
+     * The triangulation for the geometry's cells: p4est's for hypercubes
+     * (adaptive refinement), the fully distributed one for simplices (p4est
+     * does not hold them; deal.II 9.4 cannot refine it adaptively).
+     */
+    static std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
+    new_triangulation(const MPI_Comm &communicator, const bool simplex);
+    /**
+     * Simplex meshes: build the geometry's mesh serially, refine it
+     * `extra_refinements` more times, partition it (METIS) and give each rank
+     * its share and a ghost layer.
+     */
+    void
+    distribute_simplex_mesh();
+    /** Simplex meshes: the id of the local boundary faces that are not on the body's boundary. */
+    static constexpr types::boundary_id ghost_layer_boundary_id =
+        numbers::internal_face_boundary_id - 1;
+    /** Refuse a pair for the other cell shape, and what simplex meshes cannot do yet. */
+    void
+    check_cell_shape() const;
+    /** Refine every cell once (the inf-sup test's sequence of meshes). */
+    void
+    refine_globally();
+    /** Whether the cells are triangles / tetrahedra. */
+    bool
+    simplex_mesh() const
+    {
+      return geometry->simplex_cells();
+    }
+    /** The reference cell of the mesh's cells. */
+    ReferenceCell
+    cell_shape() const
+    {
+      return simplex_mesh() ? ReferenceCells::get_simplex<dim>()
+                            : ReferenceCells::get_hypercube<dim>();
+    }
+    /**
+     * The Gauss rule of the cells with @p n points per direction (QGauss on
+     * hypercubes; on simplices QGaussSimplex, exact for the same degree 2n − 1).
+     */
+    Quadrature<dim>
+    cell_gauss(const unsigned int n) const
+    {
+      return cell_shape().template get_gauss_type_quadrature<dim>(n);
+    }
+    /** The Gauss rule of the faces with @p n points per direction. */
+    Quadrature<dim - 1>
+    face_gauss(const unsigned int n) const
+    {
+      return cell_shape().face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(n);
+    }
+    /**
+     * The rule whose points are the nodes of the contact faces for
+     * degree @p degree: Gauss–Lobatto on lines and quadrilaterals; the
+     * vertices (weight area/3) on triangles, where only degree 1 has positive
+     * nodal weights.
+     */
+    Quadrature<dim - 1>
+    face_nodes(const unsigned int degree) const;
     /** Resolve the boundaries given by name to the mesh's ids and check the contact ones. */
     void
     resolve_boundaries();
@@ -801,10 +861,22 @@ namespace StabilizedLagrangian
             if (is_contact_face(cell, face))
               {
                 cell->get_dof_indices(dofs);
-                for (unsigned int i = 0; i < dofs.size(); ++i)
-                  if (fe_m->has_support_on_face(i, face))
-                    f(dofs[i], i);
+                for (const unsigned int i : multiplier_face_dofs(face))
+                  f(dofs[i], i);
               }
+    }
+    /**
+     * The multiplier element's DoFs on face @p face of a cell, ascending (the
+     * face's own DoFs: FE_SimplexP's has_support_on_face() says true for all).
+     */
+    std::vector<unsigned int>
+    multiplier_face_dofs(const unsigned int face) const
+    {
+      std::vector<unsigned int> on_face;
+      for (unsigned int j = 0; j < fe_m->n_dofs_per_face(face); ++j)
+        on_face.push_back(fe_m->face_to_cell_index(j, face));
+      std::sort(on_face.begin(), on_face.end());
+      return on_face;
     }
     /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
     void
@@ -1164,11 +1236,14 @@ namespace StabilizedLagrangian
     /** Set by an assembly that met a material state outside its admissible range. */
     std::string inadmissible_state;
 
-    parallel::distributed::Triangulation<dim> triangulation;
-    std::unique_ptr<FiniteElement<dim>>       fe_u, fe_m;
-    DoFHandler<dim>                           dof_handler_u, dof_handler_m;
-    Quadrature<dim>                           cell_quadrature;
-    Quadrature<dim - 1>                       contact_quadrature;
+    std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation_storage;
+    parallel::DistributedTriangulationBase<dim>                 &triangulation;
+    /** simplex meshes: uniform refinements beyond the geometry's (refine_globally) */
+    unsigned int                        extra_refinements = 0;
+    std::unique_ptr<FiniteElement<dim>> fe_u, fe_m;
+    DoFHandler<dim>                     dof_handler_u, dof_handler_m;
+    Quadrature<dim>                     cell_quadrature;
+    Quadrature<dim - 1>                 contact_quadrature;
 
     types::global_dof_index n_u           = 0;
     types::global_dof_index n_multipliers = 0;
