@@ -19,7 +19,8 @@ Newton iterations than the nested loops, no cut.
 Scenes: the elastic and neo-Hookean patins (plane obstacle, finite strain for
 the second) and a block pressed and slid on a rigid disc / ball with friction,
 in 2D and 3D, where the pairing, the normal and the tangents move with the
-slave points and are linearised."""
+slave points and are linearised; the elastic patin and the block on the disc
+and the ball again on triangles / tetrahedra with P1/P1."""
 import os
 import sys
 import sltest
@@ -105,9 +106,14 @@ end
 """
 
 
+SIMPLICES = ("\nsubsection Geometry\n  subsection block\n    set Cell shape = simplex\n  end\nend\n"
+             "subsection Contact\n  set Finite element pair = P1/P1\nend\n")
 scenes = [("elastic patin", patin("elastic")), ("neo-Hookean patin", patin("neo_hookean")),
           ("2D block on a disc", block_on_ball(2)), ("3D block on a ball", block_on_ball(3)),
-          ("Hertz by force", sltest.scene("hertz_force"))]
+          ("Hertz by force", sltest.scene("hertz_force")),
+          ("elastic patin, triangles", sltest.read_prm(os.path.join(root, "prm", "patin_elastic_triangles.prm"))),
+          ("2D block on a disc, triangles", block_on_ball(2) + SIMPLICES),
+          ("3D block on a ball, tetrahedra", block_on_ball(3) + SIMPLICES)]
 for name, text in scenes:
     tag = name.replace(" ", "_")
     runs = {}

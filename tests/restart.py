@@ -7,7 +7,7 @@ run's statistics.csv and iterations.csv must equal the uninterrupted run's to
 1e-10 of each column's scale (time and residual columns aside: see
 equal_tables; on 1 rank they are equal to the last digit), and its .pvd must
 list the same, complete, files. Scenes: the J2 patin (material history) on 1
-rank and on 2 ranks, and a Hertz cylinder with two cycles of adaptive
+rank and on 2 ranks, on quadrilaterals and on triangles (2 ranks), and a Hertz cylinder with two cycles of adaptive
 refinement (the mesh is rebuilt from the checkpoint's refinements).
 
 Then a damaged checkpoint is refused with a clear message and a non-zero
@@ -29,8 +29,7 @@ random.seed(int(os.environ.get("SL_RESTART_SEED", time.time_ns() % 1000003)))
 
 
 def scene_text(name, refinements, extra=""):
-    with open(os.path.join(root, "prm", name)) as f:
-        text = f.read()
+    text = sltest.read_prm(os.path.join(root, "prm", name))
     return (text.replace("set Global refinements = 4", f"set Global refinements = {refinements}") +
             extra + "\nsubsection Output\n  set Output directory = output\n"
             "  set Checkpoint interval = 2\nend\n")
@@ -96,6 +95,7 @@ def pvd_files(directory):
 scenes = {
     "j2_patin_1_rank": (scene_text("patin_elastoplastic.prm", 4), 1, ""),
     "j2_patin_2_ranks": (scene_text("patin_elastoplastic.prm", 3), 2, ""),
+    "j2_patin_triangles_2_ranks": (scene_text("patin_elastoplastic_triangles.prm", 0), 2, ""),
     "hertz_adaptive": (scene_text("hertz_cylinder.prm", 4,
                                   sltest.nested_set("Adaptive refinement/Cycles", 2)), 1,
                        "the last cycle"),
