@@ -5,8 +5,9 @@ Usage: contrib/paper_table.py --executable build/stabilized_lagrangian [--workdi
                               [--output FOLDER | --doc]
 
 For each of prm/patin_elastic.prm, prm/patin_neo_hookean.prm and
-prm/patin_elastoplastic.prm, runs the scene as shipped and the same scene with
-the whole load in one step (the seed's table is for one step), and writes the
+prm/patin_elastoplastic.prm, and each of their versions on the seed's own
+element (prm/patin_*_triangles.prm: P1/P1 on triangles), runs the scene as
+shipped and the same scene with the whole load in one step (the seed's table is for one step), and writes the
 tables in the layout of the seed's table (contrib/iteration_table.py) into
 patin_iteration_tables.md, with the run time and the Newton totals: in the
 --output folder (default: the work directory; or --output FILE.md), in doc/
@@ -19,6 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import iteration_table  # noqa: E402
+import robustness_map  # noqa: E402
 import tool_cli  # noqa: E402
 
 root = tool_cli.ROOT
@@ -40,9 +42,12 @@ lines = ["# The seed paper's patin: iteration counts of every loop",
          "the discussion is in `doc/patin_paper_table.md`. The last row of a step gives its Newton",
          "total and, in brackets, the run's cumulative count up to that step (accepted attempts).",
          ""]
-for name, title in scenes:
-    with open(os.path.join(root, "prm", f"patin_{name}.prm")) as f:
-        base = f.read()
+# each scene on Q1/P1 quadrilaterals, then on the seed's own element: P1/P1 triangles
+# (prm/patin_*_triangles.prm, the unstructured mesh of prm/meshes/patin_triangles.geo)
+elements = (("", ""), ("_triangles", ", P1/P1 triangles"))
+for (name, title), (suffix, element) in ((scene, element) for element in elements for scene in scenes):
+    base = robustness_map.read_scene(os.path.join(root, "prm", f"patin_{name}{suffix}.prm"))
+    name, title = name + suffix, title + element
     for label, steps in (("one load step", 1), ("as shipped", None)):
         text = base
         if steps is not None:
