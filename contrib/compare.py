@@ -4,7 +4,9 @@
 Usage: contrib/compare.py SCENE.prm [--executable build/stabilized_lagrangian]
            [--pairs PAIR ...] [--algorithms nested|newton|scene ...] [--refinements N ...]
            [--rn-factors F ...] [--rt-factors F ...] [--stoppings fixed|adaptive ...]
-           [--choice 'pair=Q2/P1, algorithm=newton, refinement=1, rn_factor=1, rt_factor=1, stopping=fixed' ...]
+           [--cell-shapes hypercube|simplex ...]
+           [--choice 'pair=Q2/P1, algorithm=newton, refinement=1, rn_factor=1, rt_factor=1, stopping=fixed,
+                      cell_shape=hypercube' ...]
            [--set 'Section/Sub/Entry=value' ...] [--measure pressure|normal_force|tangential_force|half_width|peak]
            [--target ERROR] [--reference-pair PAIR] [--reference-refinement N]
            [--jobs N] [--timeout SECONDS] [--workdir DIR] [--name NAME] [--output FOLDER | --doc]
@@ -28,11 +30,15 @@ the work directory, /tmp/compare/<scene> unless --workdir; doc/ with --doc):
 NAME is compare_<scene> unless --name.
 
 Choices: the cartesian product of --pairs, --algorithms, --refinements,
---rn-factors, --rt-factors and --stoppings (each defaults to the scene's own:
-its pair, its algorithm, refinement 0, factors 1, its `Nonlinear
-solver/Stopping`), or exactly the --choice entries (keys pair, algorithm,
-refinement, rn_factor, rt_factor, stopping; a key left out takes the scene's
-own). A stopping is `fixed` (the loops' own tolerances) or `adaptive` (they
+--rn-factors, --rt-factors, --stoppings and --cell-shapes (each defaults to the
+scene's own: its pair, its algorithm, refinement 0, factors 1, its `Nonlinear
+solver/Stopping`, its cells), or exactly the --choice entries (keys pair,
+algorithm, refinement, rn_factor, rt_factor, stopping, cell_shape; a key left
+out takes the scene's own). A cell shape sets `Geometry/<model>/Cell shape`
+of a built-in geometry: `simplex` splits every cell of the uniformly refined
+mesh into 8 triangles (24 tetrahedra), which gives about the DoFs of the
+quadrilaterals refined once more; it takes the P pairs (P1/P1, P2/P1, ...),
+`hypercube` the Q pairs. A stopping is `fixed` (the loops' own tolerances) or `adaptive` (they
 also stop once their error is below a fraction of the estimated
 discretisation error, doc/formulation.md "Adaptive stopping"); the reference
 stops at the fixed tolerances. An algorithm is `nested` (the three loops of doc/formulation.md
@@ -64,7 +70,8 @@ from it by O((a/R)^2), which bounds the errors from below.
 
 Otherwise against a reference solution the tool computes: the scene with
 --reference-pair (default Q2/P1, stable in 2D and 3D; Q2/P2's multiplier
-oscillates between vertices and midsides, doc/fe_pairs.md) on the finest
+oscillates between vertices and midsides, doc/fe_pairs.md; P2/P1 on a scene
+of simplices), on the scene's own cells, on the finest
 requested mesh refined once more (--reference-refinement), with the scene's
 r factors and its algorithm (--reference-algorithm: both reach the same
 solution, doc/formulation.md "Generalized Newton"; newton is often faster).
@@ -117,9 +124,11 @@ from hertz_errors import hertz_errors  # noqa: E402
 LOOPS = ("Geometry loop", "Friction loop", "Status loop")
 ALGORITHMS = ("nested", "newton", "scene")
 STOPPINGS = ("fixed", "adaptive")
-Choice = namedtuple("Choice", "pair algorithm refinement rn_factor rt_factor stopping")
+# the cells of a built-in geometry (`Geometry/<model>/Cell shape`); `scene` for a mesh file's own
+CELL_SHAPES = ("hypercube", "simplex")
+Choice = namedtuple("Choice", "pair algorithm refinement rn_factor rt_factor stopping cell_shape")
 CHOICE_TYPES = {"pair": str, "algorithm": str, "refinement": int, "rn_factor": float, "rt_factor": float,
-                "stopping": str}
+                "stopping": str, "cell_shape": str}
 # the errors of each kind of accuracy: CSV column, Markdown header
 HERTZ_ERRORS = [("pressure_l2_error", "p L2 error"), ("half_width_error", "half-width error"),
                 ("peak_error", "peak p error")]
@@ -154,6 +163,9 @@ def choice_spec(text):
         raise argparse.ArgumentTypeError(f"algorithm '{spec['algorithm']}' is not one of {', '.join(ALGORITHMS)}")
     if spec.get("stopping", "fixed") not in STOPPINGS:
         raise argparse.ArgumentTypeError(f"stopping '{spec['stopping']}' is not one of {', '.join(STOPPINGS)}")
+    if spec.get("cell_shape", "hypercube") not in CELL_SHAPES:
+        raise argparse.ArgumentTypeError(
+            f"cell_shape '{spec['cell_shape']}' is not one of {', '.join(CELL_SHAPES)}")
     for key in ("rn_factor", "rt_factor"):
         if spec.get(key, 1) <= 0:
             raise argparse.ArgumentTypeError(f"{key} {spec[key]} is not > 0")
@@ -193,6 +205,8 @@ class Scene:
         self.algorithm = {frozenset(["fixed point"]): "nested", frozenset(["newton"]): "newton"}.get(
             frozenset(methods), "scene")
         self.stopping = self.parameters["Nonlinear solver/Stopping"]
+        self.cell_shape_entry = f"Geometry/{self.geometry}/Cell shape"
+        self.cell_shape = self.parameters.get(self.cell_shape_entry, "scene")
         self.automatic = {name: self.parameters[f"Contact/{name}"].strip() == "automatic" for name in ("r_n", "r_t")}
         self.hertz = self.hertz_constants()
 
@@ -223,6 +237,8 @@ class Scene:
                     f"Contact/Automatic r_n factor={choice.rn_factor!r}",
                     f"Contact/Automatic r_t factor={choice.rt_factor!r}",
                     f"Nonlinear solver/Stopping={choice.stopping}"]
+        if choice.cell_shape != "scene":
+            settings.append(f"{self.cell_shape_entry}={choice.cell_shape}")
         if choice.algorithm == "nested":
             settings += [f"Nonlinear solver/{loop}/Method=fixed point" for loop in LOOPS]
         return settings
@@ -249,22 +265,29 @@ def fe_pairs(print_parameters):
 
 def choices_of(args, scene, parser):
     """The choices to run, checked against the scene (a usage error names what is wrong)."""
-    own = Choice(scene.pair, scene.algorithm, 0, 1.0, 1.0, scene.stopping)
+    own = Choice(scene.pair, scene.algorithm, 0, 1.0, 1.0, scene.stopping, scene.cell_shape)
     if args.choice:
-        lists = [k for k in ("pairs", "algorithms", "refinements", "rn_factors", "rt_factors", "stoppings")
-                 if getattr(args, k)]
+        lists = [k for k in ("pairs", "algorithms", "refinements", "rn_factors", "rt_factors", "stoppings",
+                             "cell_shapes") if getattr(args, k)]
         if lists:
             parser.error(f"--choice lists the runs itself: it excludes --{lists[0].replace('_', '-')}")
         choices = [own._replace(**spec) for spec in args.choice]
     else:
         lists = [getattr(args, k) or [getattr(own, f)] for k, f in (
             ("pairs", "pair"), ("algorithms", "algorithm"), ("refinements", "refinement"),
-            ("rn_factors", "rn_factor"), ("rt_factors", "rt_factor"), ("stoppings", "stopping"))]
+            ("rn_factors", "rn_factor"), ("rt_factors", "rt_factor"), ("stoppings", "stopping"),
+            ("cell_shapes", "cell_shape"))]
         choices = [Choice(*values) for values in itertools.product(*lists)]
     choices = list(dict.fromkeys(choices))  # the same choice once
     for choice in choices:
         if scene.pairs and choice.pair not in scene.pairs:
             parser.error(f"pair '{choice.pair}' is not one of {', '.join(sorted(scene.pairs))}")
+        if choice.cell_shape != scene.cell_shape and scene.cell_shape == "scene":
+            parser.error(f"cell shape '{choice.cell_shape}': the scene's geometry `{scene.geometry}` has no "
+                         "Cell shape entry (a mesh file's cells are its own)")
+        if choice.cell_shape in CELL_SHAPES and simplex_pair(choice.pair) != (choice.cell_shape == "simplex"):
+            parser.error(f"pair '{choice.pair}' with cell shape '{choice.cell_shape}': the P pairs are for "
+                         "simplices, the Q pairs for hypercubes")
         if scene.refinements + choice.refinement < 0:
             parser.error(f"refinement {choice.refinement}: the scene's {scene.refinement_entry} is "
                          f"{scene.refinements}, so it would be negative")
@@ -273,6 +296,11 @@ def choices_of(args, scene, parser):
                 parser.error(f"an {name} factor needs Contact/{name} = automatic in the scene "
                              f"(it is {scene.parameters['Contact/' + name]})")
     return choices
+
+
+def simplex_pair(pair):
+    """Whether a pair is for triangles / tetrahedra (P1/P1, P2/P1, ...) rather than Q_k cells."""
+    return pair.startswith("P")
 
 
 def slug(text):
@@ -286,6 +314,8 @@ def describe(choice, scene):
         text += f", r_n x{choice.rn_factor:g}, r_t x{choice.rt_factor:g}"
     if choice.stopping != "fixed":
         text += f", {choice.stopping} stopping"
+    if choice.cell_shape != scene.cell_shape:
+        text += f", {choice.cell_shape} cells"
     return text
 
 
@@ -612,17 +642,22 @@ def parse_arguments():
                         help="Contact/Automatic r_t factor values (default: 1)")
     parser.add_argument("--stoppings", nargs="+", choices=STOPPINGS, metavar="STOPPING",
                         help="fixed or adaptive: Nonlinear solver/Stopping (default: the scene's)")
+    parser.add_argument("--cell-shapes", nargs="+", choices=CELL_SHAPES, metavar="SHAPE",
+                        help="hypercube or simplex: Geometry/<model>/Cell shape of a built-in geometry "
+                             "(default: the scene's)")
     parser.add_argument("--choice", action="append", type=choice_spec, default=[], metavar="'key=value, ...'",
                         help="one run (repeatable), instead of the product of the lists: keys pair, algorithm, "
-                             "refinement, rn_factor, rt_factor, stopping; the scene's own for a key left out")
+                             "refinement, rn_factor, rt_factor, stopping, cell_shape; the scene's own for a key "
+                             "left out")
     parser.add_argument("--set", action="append", default=[], type=tool_cli.setting,
                         metavar="'Section/Sub/Entry=value'", help="an entry set in every run, repeatable")
     parser.add_argument("--measure", choices=sorted(MEASURES), default="pressure",
                         help="the error plotted and compared with --target (default: %(default)s)")
     parser.add_argument("--target", type=tool_cli.positive_float, metavar="ERROR",
                         help="relative error (0.01 = 1 %%): mark the cheapest choice that meets it")
-    parser.add_argument("--reference-pair", default="Q2/P1", metavar="PAIR",
-                        help="pair of the reference solution, for a scene without a closed form (default: %(default)s)")
+    parser.add_argument("--reference-pair", metavar="PAIR",
+                        help="pair of the reference solution, for a scene without a closed form (default: Q2/P1, "
+                             "on a simplex mesh P2/P1)")
     parser.add_argument("--reference-algorithm", choices=ALGORITHMS, default="scene",
                         help="its algorithm (default: %(default)s, the scene's loop methods)")
     parser.add_argument("--reference-refinement", type=int, metavar="N",
@@ -659,6 +694,8 @@ def plan(parser, args):
         parser.error(f"--measure {args.measure}: against {'Hertz' if scene.hertz else 'the reference'} the "
                      f"measures are {', '.join(m for m, k in MEASURES.items() if k in own)}")
     if not scene.hertz:
+        if args.reference_pair is None:
+            args.reference_pair = "P2/P1" if simplex_pair(scene.pair) else "Q2/P1"
         if scene.pairs and args.reference_pair not in scene.pairs:
             parser.error(f"--reference-pair '{args.reference_pair}' is not one of {', '.join(sorted(scene.pairs))}")
         level = args.reference_refinement
@@ -666,7 +703,7 @@ def plan(parser, args):
             level = max(c.refinement for c in runs.values()) + 1
         if scene.refinements + level < 0:
             parser.error(f"--reference-refinement {level}: the scene's {scene.refinement_entry} would be negative")
-        runs[0] = Choice(args.reference_pair, args.reference_algorithm, level, 1.0, 1.0, "fixed")
+        runs[0] = Choice(args.reference_pair, args.reference_algorithm, level, 1.0, 1.0, "fixed", scene.cell_shape)
     try:
         texts = {k: scene.text(c, args.set) for k, c in runs.items()}
     except ValueError as error:
@@ -769,7 +806,7 @@ def main():
             r["cheapest"] = r is best
     basis, reference_line = accuracy_text(scene, runs, done, rows)
 
-    columns = ["index", "pair", "algorithm", "stopping", "refinement", "global_refinements", "rn_factor", "rt_factor",
+    columns = ["index", "pair", "algorithm", "stopping", "cell_shape", "refinement", "global_refinements", "rn_factor", "rt_factor",
                "outcome", "exit_code", "cells", "dofs", "load_steps", "newton_iterations", "failed_newton_iterations",
                "wall_time_s",
                "process_time_s", "peak_memory_MiB", "normal_force_N", "tangential_force_N",

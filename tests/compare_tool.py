@@ -8,7 +8,9 @@ the pressure and of the half-width decrease with refinement for each pair;
 --target marks the cheapest choice that meets it, the one of least wall time.
 A run that fails is a failed row and exit code 1, not a crash; a bad argument
 stops the tool with exit code 2 before anything runs. Each row names its
-stopping (`Nonlinear solver/Stopping`, the scene's: fixed)."""
+stopping (`Nonlinear solver/Stopping`, the scene's: fixed). The half ball split
+into triangles (`cell_shape=simplex`) with P1/P1 runs beside Q1/P1, each row
+naming its cell shape; a Q pair on simplices is refused."""
 import csv
 import math
 import os
@@ -101,10 +103,27 @@ if os.path.exists(failing):
 check(code == 1 and len(rows) == 1 and rows[0]["outcome"] == "diverged" and rows[0]["pressure_l2_error"] == ""
       and "Traceback" not in err, f"a failing run: exit code {code}, rows {rows}, stderr '{err.strip()[-300:]}'")
 
+# quadrilaterals against triangles: the built-in half ball split into triangles (`cell_shape`), one
+# level coarser (each quadrilateral gives 8 triangles), with P1/P1
+shapes = os.path.join(workdir, "shapes")
+code, out, err = run("--choice", "pair=Q1/P1", "--choice", "pair=P1/P1, cell_shape=simplex, refinement=-1",
+                     "--jobs", "2", "--workdir", shapes)
+rows = []
+if os.path.exists(os.path.join(shapes, "compare_tiny_hertz.csv")):
+    with open(os.path.join(shapes, "compare_tiny_hertz.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+check(code == 0 and [(r["pair"], r["cell_shape"], r["outcome"]) for r in rows] ==
+      [("Q1/P1", "hypercube", "converged"), ("P1/P1", "simplex", "converged")],
+      f"cell shapes: exit code {code}, rows {[(r['pair'], r['cell_shape'], r['outcome']) for r in rows]}")
+check(len(rows) == 2 and all(finite(r["pressure_l2_error"]) for r in rows),
+      f"cell shapes: the errors against Hertz {[r['pressure_l2_error'] for r in rows]}")
+
 # bad arguments: exit code 2 with a message, nothing run
 for arguments, message in ((["--jobs", "0"], "--jobs"), (["--pairs", "Q9/P9"], "Q9/P9"),
                            (["--measure", "normal_force"], "--measure"), (["--refinements", "-3"], "negative"),
-                           (["--choice", "stopping=sometimes"], "stopping")):
+                           (["--choice", "stopping=sometimes"], "stopping"),
+                           (["--choice", "cell_shape=round"], "cell_shape"),
+                           (["--choice", "pair=Q1/P1, cell_shape=simplex"], "the P pairs are for simplices")):
     bad = os.path.join(workdir, "bad")
     code, out, err = run(*arguments, "--workdir", bad)
     ran = [d for d in os.listdir(bad) if os.path.isdir(os.path.join(bad, d))] if os.path.isdir(bad) else []
