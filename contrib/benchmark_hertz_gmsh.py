@@ -1,10 +1,11 @@
 #!/usr/bin/python3
-"""Hertz contact pressure on unstructured hexahedral meshes (issue 23).
+"""Hertz contact pressure on unstructured hexahedral or tetrahedral meshes.
 
 Usage: contrib/benchmark_hertz_gmsh.py --executable build/stabilized_lagrangian
                                        [--baseline OLD_EXECUTABLE] [--workdir DIR]
                                        [--jobs N] [--size-factors 1,0.7,0.5]
-                                       [--refinements 0] [--doc [FILE]]
+                                       [--refinements 0] [--cells hexahedra|tetrahedra]
+                                       [--pair PAIR] [--doc [FILE]]
 
 Runs prm/hertz_sphere_gmsh.prm (a quarter of a ball, R = 50 mm, pressed by
 P = 20 kN onto a rigid frictionless plane; Q1/P1) on three meshes of
@@ -16,7 +17,9 @@ made with a second executable (e.g. a build before a fix) and shown beside.
 With --refinements the meshes are also refined uniformly (e.g. `--size-factors 2
 --refinements 0,1,2`): nested meshes whose new vertices on the ball lie on the
 sphere (`Spherical boundaries` of the scene), so the observed order is that of
-the discretisation, not of the mesh generator's choices.
+the discretisation, not of the mesh generator's choices. With --cells
+tetrahedra the .geo's tetrahedra are kept (no subdivision) and the pair is
+P1/P1 unless --pair.
 
 Per run: DoFs, the normal force P (four times the quarter's), and the errors
 of the nodal contact pressure against Hertz's closed form with the run's own
@@ -71,9 +74,16 @@ parser.add_argument("--size-factors", default="1,0.7,0.5",
                     help="mesh size factors, coarse to fine (1: the shipped mesh)")
 parser.add_argument("--refinements", default="0",
                     help="uniform refinements of each mesh, coarse to fine (nested meshes)")
-parser.add_argument("--doc", nargs="?", const=os.path.join(ROOT, "doc", "hertz_gmsh_hexahedra.md"),
-                    help="write the Markdown table (default doc/hertz_gmsh_hexahedra.md)")
+parser.add_argument("--cells", choices=("hexahedra", "tetrahedra"), default="hexahedra",
+                    help="hexahedra: Gmsh's tetrahedra each subdivided into four hexahedra (the shipped .geo); "
+                         "tetrahedra: the tetrahedra themselves (default: %(default)s)")
+parser.add_argument("--pair", help="the FE pair (default: Q1/P1 on hexahedra, P1/P1 on tetrahedra)")
+parser.add_argument("--doc", nargs="?", const="",
+                    help="write the Markdown table (default doc/hertz_gmsh_<cells>.md)")
 args = parser.parse_args()
+args.pair = args.pair or ("Q1/P1" if args.cells == "hexahedra" else "P1/P1")
+if args.doc == "":
+    args.doc = os.path.join(ROOT, "doc", f"hertz_gmsh_{args.cells}.md")
 try:
     meshes = [(float(f), int(n)) for f in args.size_factors.split(",") for n in args.refinements.split(",")]
 except ValueError:
@@ -95,10 +105,12 @@ def read_csv(path):
 def mesh_file(factor):
     """A .geo that sets the size factor and includes the shipped geometry."""
     os.makedirs(os.path.join(workdir, "meshes"), exist_ok=True)
-    path = os.path.join(workdir, "meshes", f"hertz_quarter_ball_{factor:g}.geo")
+    path = os.path.join(workdir, "meshes", f"hertz_quarter_ball_{args.cells}_{factor:g}.geo")
     with open(path, "w") as f:
         f.write(f"size_factor = {factor!r};\n"
                 f"Include \"{os.path.join(ROOT, 'prm', 'meshes', 'hertz_quarter_ball.geo')}\";\n")
+        if args.cells == "tetrahedra":
+            f.write("Mesh.SubdivisionAlgorithm = 0;\n")
     return path
 
 
@@ -115,6 +127,7 @@ subsection Geometry
 end
 subsection Contact
   set Contact quadrature = {quadrature}
+  set Finite element pair = {args.pair}
 end
 subsection Output
   set Output directory = output
@@ -240,6 +253,7 @@ def run(build, mesh, quadrature):
 
 
 cases = [(b, m, q) for b in builds for m in meshes for q in QUADRATURES]
+table = os.path.join(workdir, f"hertz_gmsh_{args.cells}.csv")
 for factor in {m[0] for m in meshes}:
     mesh_file(factor)  # written before the runs that read it start
 start = time.time()
@@ -250,11 +264,11 @@ with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as poo
 total = time.time() - start
 rows = [r for r in (results[c] for c in cases) if r]
 fields = list(rows[0].keys()) if rows else []
-with open(os.path.join(workdir, "hertz_gmsh_hexahedra.csv"), "w", newline="") as f:
+with open(table, "w", newline="") as f:
     writer = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
     writer.writeheader()
     writer.writerows(rows)
-print(f"{len(rows)} of {len(cases)} runs in {total:.0f} s; rows in {workdir}/hertz_gmsh_hexahedra.csv")
+print(f"{len(rows)} of {len(cases)} runs in {total:.0f} s; rows in {table}")
 
 
 def rate(previous, row):
@@ -271,12 +285,15 @@ def cells(row, previous):
 
 if args.doc:
     command = "contrib/benchmark_hertz_gmsh.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
-    lines = ["# Hertz contact pressure on unstructured hexahedral meshes", "",
+    cells_text = ("tetrahedra each subdivided into four hexahedra" if args.cells == "hexahedra" else
+                  "tetrahedra, the contact faces triangles")
+    shape = "hexahedral" if args.cells == "hexahedra" else "tetrahedral"
+    lines = [f"# Hertz contact pressure on unstructured {shape} meshes", "",
              "The scene of prm/hertz_sphere_gmsh.prm: a ball (R = 50 mm, E = 200000 MPa, nu = 0.3) pressed "
              "by P = 20 kN onto a rigid frictionless plane, a quarter model meshed by Gmsh "
-             "(prm/meshes/hertz_quarter_ball.geo: tetrahedra each subdivided into four hexahedra, a size "
-             "field graded toward the contact point; the contact faces are general quadrilaterals, not "
-             "parallelograms), Q1/P1, the whole load in one step. The meshes are made anew with every size "
+             f"(prm/meshes/hertz_quarter_ball.geo: {cells_text}, a size "
+             "field graded toward the contact point" + ("; the contact faces are general quadrilaterals, not "
+             "parallelograms" if args.cells == "hexahedra" else "") + f"), {args.pair}, the whole load in one step. The meshes are made anew with every size "
              "multiplied by the size factor, then refined uniformly `ref.` times (new vertices on the "
              "sphere: nested meshes). Errors against the closed form of Hertz with the run's own "
              "normal force (a ~ 1.5 mm, p0 ~ 4.2 GPa):", "",
