@@ -143,8 +143,9 @@ namespace StabilizedLagrangian
               << fe_pair->displacement_degree()
               << " (Contact/Finite element pair = " << contact_parameters.fe_pair
               << "): the body locks volumetrically, its displacements and forces are far too "
-                 "stiff. Use quadratic displacements (Q2/P1, Q2/P2), which lock much later; no "
-                 "formulation here is locking-free yet.\n";
+                 "stiff. Use quadratic displacements ("
+              << (simplex_mesh() ? "P2/P1, P2/P2" : "Q2/P1, Q2/P2")
+              << "), which lock much later; no formulation here is locking-free yet.\n";
       }
   }
 
