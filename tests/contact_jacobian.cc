@@ -4,6 +4,9 @@
 // Gauss-Lobatto and Gauss contact quadrature. Then the generalized Newton's
 // Jacobian, with the geometry, friction and status loops folded into Newton,
 // on a curved obstacle: statuses, thresholds and pairings follow the iterate.
+// Then the volume terms of `Volumetric formulation = F-bar`: B-bar (linear
+// elastic) and F-bar (neo-Hookean), whose tangent also runs through the
+// gradient at each cell's centre.
 
 #include <deal.II/base/mpi.h>
 
@@ -104,14 +107,46 @@ end
    * @param state the frozen statuses; with @p generalized, the statuses follow
    * the iterate and @p state only chooses the semi-multipliers (stick or slip)
    */
+  /**
+   * `Volumetric formulation = F-bar` (near incompressible, ν = 0.45): the
+   * B-bar of the linear elastic model, or F-bar with the neo-Hookean model
+   * (C10 = 0.2: E = 1.16, the soft block of the scene).
+   */
+  std::string
+  f_bar(const bool finite_strain)
+  {
+    return std::string(R"(
+subsection Material
+  set Volumetric formulation = F-bar
+  set Model = )") +
+           (finite_strain ? "neo-Hookean" : "linear elastic") + R"(
+  subsection linear elastic
+    set Poisson's ratio = 0.45
+  end
+  subsection neo-Hookean
+    set C10 = 0.2
+    set Poisson's ratio = 0.45
+  end
+end
+)";
+  }
+
   template <int dim>
   void
-  test(const State state, const std::string &quadrature, const double mu, const bool generalized)
+  test(const State        state,
+       const std::string &quadrature,
+       const double       mu,
+       const bool         generalized,
+       const std::string &material  = "",
+       const double       amplitude = 1e-3,
+       const std::string &label     = "")
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse(
-        prm, scene<dim>(quadrature, mu) + (generalized ? generalized_newton<dim>() : ""), false);
+    Parameters::parse(prm,
+                      scene<dim>(quadrature, mu) + (generalized ? generalized_newton<dim>() : "") +
+                          material,
+                      false);
     ContactProblem<dim> problem(prm, false);
     problem.setup();
 
@@ -129,7 +164,7 @@ end
       {
         const bool         is_multiplier = index >= problem.n_displacement_dofs();
         const unsigned int c             = is_multiplier ? component.at(index) : 0;
-        double             value         = 1e-3 * unit(rng);
+        double             value         = amplitude * unit(rng);
         if (is_multiplier && c == 0)
           value = 10. + unit(rng);
         else if (is_multiplier)
@@ -213,8 +248,8 @@ end
         const bool   ok = e <= 1e-6 * s && s > 0.;
         failures += !ok;
         if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-          std::cout << (ok ? "ok    " : "FAIL  ") << dim << "D " << quadrature << " mu=" << mu
-                    << (generalized ? " generalized Newton, " : " ")
+          std::cout << (ok ? "ok    " : "FAIL  ") << dim << "D " << label << quadrature
+                    << " mu=" << mu << (generalized ? " generalized Newton, " : " ")
                     << names[static_cast<int>(state)] << " rows " << blocks[b]
                     << ": |J v - FD| = " << e << ", |J v| = " << s << std::endl;
       }
@@ -247,6 +282,15 @@ main(int argc, char *argv[])
             test<2>(state, quadrature, mu, generalized);
             test<3>(state, quadrature, mu, generalized);
           }
+  // F-bar's tangent (through the cell centre's gradient), with displacements of
+  // 5 % of the cell size so that the finite-strain terms count
+  for (const bool finite_strain : {false, true})
+    for (const State state : {State::open, State::slip})
+      {
+        const std::string label = finite_strain ? "F-bar neo-Hookean " : "B-bar linear elastic ";
+        test<2>(state, "Gauss-Lobatto", 0.3, false, f_bar(finite_strain), 2.5e-2, label);
+        test<3>(state, "Gauss-Lobatto", 0.3, false, f_bar(finite_strain), 2.5e-2, label);
+      }
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -106,6 +106,7 @@ namespace StabilizedLagrangian
                                              std::vector<Vector<float>> &cell_history_fields) const
   {
     const unsigned int n_cells = triangulation.n_active_cells();
+    compute_centre_gradients(u);
     cell_stress.assign(n_cells, Tensor<2, 3>());
     const std::vector<std::string> names = history_field_names();
     cell_history_fields.assign(names.size(), Vector<float>(n_cells));

@@ -285,13 +285,15 @@ namespace StabilizedLagrangian
   {
     const FiniteElement<dim> &fe = *fe_u;
     FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
-    FEFaceValues<dim>         neumann_values(fe,
+    // F-bar: the gradient at the cell's centre (the one-point Gauss rule)
+    FEValues<dim>                        centre_values(fe, cell_gauss(1), update_gradients);
+    FEFaceValues<dim>                    neumann_values(fe,
                                      face_gauss(fe_pair->displacement_degree() + 1),
                                      update_values | update_quadrature_points | update_JxW_values);
-    const unsigned int        n_dofs = fe.n_dofs_per_cell();
-    const unsigned int        n_q    = cell_quadrature.size();
-    FullMatrix<double>        cell_matrix(n_dofs, n_dofs);
-    Vector<double>            cell_rhs(n_dofs), cell_external(n_dofs);
+    const unsigned int                   n_dofs = fe.n_dofs_per_cell();
+    const unsigned int                   n_q    = cell_quadrature.size();
+    FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
+    Vector<double>                       cell_rhs(n_dofs), cell_external(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     std::vector<double>                  coefficients(n_dofs);
     std::vector<unsigned int>            component(n_dofs);
@@ -306,21 +308,47 @@ namespace StabilizedLagrangian
           cell->get_dof_indices(dofs);
           for (unsigned int i = 0; i < n_dofs; ++i)
             coefficients[i] = ghosted_solution(dofs[i]);
-          const Materials::Interface<dim> &material = material_of(cell);
-          cell_matrix                               = 0.;
-          cell_rhs                                  = 0.;
+          const Materials::BodyMaterial<dim> &body     = body_of(cell);
+          const Materials::Interface<dim>    &material = *body.model;
+          cell_matrix                                  = 0.;
+          cell_rhs                                     = 0.;
+          Tensor<2, dim> centre_grad_u;
+          if (body.f_bar)
+            {
+              centre_values.reinit(cell);
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                centre_grad_u[component[i]] += coefficients[i] * centre_values.shape_grad(i, 0);
+            }
           for (unsigned int q = 0; q < n_q; ++q)
             {
               Tensor<2, dim> grad_u;
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
               Materials::Response<dim> response;
+              // the weak-form stress and its derivatives at the point and the centre
+              Tensor<2, dim> stress;
+              Tensor<4, dim> d_point, d_centre;
               try
                 {
-                  response =
-                      material.evaluate(grad_u,
-                                        material_history.committed(cell->active_cell_index(), q),
-                                        material_history.trial(cell->active_cell_index(), q));
+                  if (body.f_bar)
+                    {
+                      const Materials::FBar<dim> f_bar(
+                          grad_u, centre_grad_u, material.is_finite_strain());
+                      response = material.evaluate(
+                          f_bar.modified_gradient(),
+                          material_history.committed(cell->active_cell_index(), q),
+                          material_history.trial(cell->active_cell_index(), q));
+                      f_bar.weak_form(response, stress, d_point, d_centre);
+                    }
+                  else
+                    {
+                      response = material.evaluate(
+                          grad_u,
+                          material_history.committed(cell->active_cell_index(), q),
+                          material_history.trial(cell->active_cell_index(), q));
+                      stress  = response.stress;
+                      d_point = response.tangent;
+                    }
                 }
               catch (const Materials::InadmissibleState &error)
                 {
@@ -331,16 +359,24 @@ namespace StabilizedLagrangian
                 }
               const double JxW = fe_values.JxW(q);
               for (unsigned int i = 0; i < n_dofs; ++i)
-                cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
+                cell_rhs(i) += stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
               if (!assemble_matrix)
                 continue;
-              // A : ∇φ_j, where ∇φ_j has only the row component[j]
+              // A : ∇φ_j, where ∇φ_j has only the row component[j] (with F-bar
+              // also the derivative through the centre's gradient)
               for (unsigned int j = 0; j < n_dofs; ++j)
                 {
                   const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
                   for (unsigned int k = 0; k < dim; ++k)
                     for (unsigned int l = 0; l < dim; ++l)
-                      tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
+                      tangent_times_grad[j][k][l] = d_point[k][l][component[j]] * g;
+                  if (body.f_bar)
+                    {
+                      const Tensor<1, dim> &g0 = centre_values.shape_grad(j, 0);
+                      for (unsigned int k = 0; k < dim; ++k)
+                        for (unsigned int l = 0; l < dim; ++l)
+                          tangent_times_grad[j][k][l] += d_centre[k][l][component[j]] * g0;
+                    }
                 }
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
@@ -355,6 +391,25 @@ namespace StabilizedLagrangian
           hanging_constraints.distribute_local_to_global(cell_rhs, dofs, internal_force);
           add_neumann_loads(cell, dofs, neumann_values, cell_rhs, cell_external);
           add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
+        }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::compute_centre_gradients(const TrilinosWrappers::MPI::Vector &u) const
+  {
+    if (std::none_of(
+            materials.begin(), materials.end(), [](const auto &body) { return body.f_bar; }))
+      return;
+    FEValues<dim>               centre_values(*fe_u, cell_gauss(1), update_gradients);
+    std::vector<Tensor<2, dim>> gradient(1);
+    centre_gradients.assign(triangulation.n_active_cells(), Tensor<2, dim>());
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          centre_values.reinit(cell);
+          centre_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradient);
+          centre_gradients[cell->active_cell_index()] = gradient[0];
         }
   }
 
@@ -518,6 +573,8 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::update_ghosts();                 \
   template void ContactProblem<dim>::assemble_newton_system(bool);    \
   template void ContactProblem<dim>::assemble_volume(bool);           \
+  template void ContactProblem<dim>::compute_centre_gradients(        \
+      const TrilinosWrappers::MPI::Vector &) const;                   \
   template void ContactProblem<dim>::add_neumann_contribution(        \
       const typename DoFHandler<dim>::active_cell_iterator &,         \
       unsigned int,                                                   \

@@ -81,6 +81,7 @@ namespace StabilizedLagrangian
                                            Vector<double>                      &contact)
   {
     share_ghost_history();
+    compute_centre_gradients(u);
     const double energy = add_volume_residuals(u, squared);
     add_face_residuals(u, squared);
     add_contact_residuals(u, contact);

@@ -200,6 +200,7 @@ namespace StabilizedLagrangian
     const unsigned int               n_q = cell_quadrature.size();
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
     std::vector<double>              squared(earlier_cycles.size(), 0.);
+    compute_centre_gradients(earlier_cycles.back());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {

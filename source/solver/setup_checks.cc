@@ -135,7 +135,9 @@ namespace StabilizedLagrangian
     for (const auto &material : materials)
       {
         const double nu = material.model->poissons_ratio();
-        if (nu < limit)
+        // F-bar keeps one volume constraint per cell: locking-free on Q1, not on
+        // linear simplices, whose gradient is already constant in the cell
+        if (nu < limit || (material.f_bar && !simplex_mesh()))
           continue;
         pcout << "WARNING: " << material.slot << ": Poisson's ratio " << nu << " (bulk modulus "
               << 2. * (1. + nu) / (3. * (1. - 2. * nu))
@@ -143,9 +145,14 @@ namespace StabilizedLagrangian
               << fe_pair->displacement_degree()
               << " (Contact/Finite element pair = " << contact_parameters.fe_pair
               << "): the body locks volumetrically, its displacements and forces are far too "
-                 "stiff. Use quadratic displacements ("
-              << (simplex_mesh() ? "P2/P1, P2/P2" : "Q2/P1, Q2/P2")
-              << "), which lock much later; no formulation here is locking-free yet.\n";
+                 "stiff. Use "
+              << (simplex_mesh()
+                      ? "quadratic displacements (P2/P1, P2/P2), which lock much later, or "
+                        "quadrilaterals / hexahedra with "
+                      : "")
+              << material.slot << "/Volumetric formulation = F-bar (locking-free on Q1"
+              << (simplex_mesh() ? "" : ", doc/formulation.md \"Near incompressibility\"")
+              << ").\n";
       }
   }
 

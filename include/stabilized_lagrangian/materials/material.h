@@ -159,6 +159,24 @@ namespace StabilizedLagrangian
       return slot == 0 ? std::string("Material") : "Material " + std::to_string(slot + 1);
     }
 
+    /** @brief Declare `Volumetric formulation` in the current (material slot) subsection. */
+    inline void
+    declare_volumetric_formulation(ParameterHandler &prm)
+    {
+      prm.declare_entry(
+          "Volumetric formulation",
+          "displacement",
+          Patterns::Selection("displacement|F-bar"),
+          "displacement: the model sees the displacement gradient at each quadrature point. "
+          "F-bar: it sees the deformation gradient with its volume change taken at the cell's "
+          "centre, F_bar = (J0/J)^(1/dim) F (de Souza Neto, Peric, Dutko, Owen 1996; in small "
+          "strain the B-bar of Hughes 1980: the trace of the strain taken at the centre), so that "
+          "a cell keeps one volume constraint instead of one per quadrature point: Q1 "
+          "quadrilaterals and hexahedra no longer lock when nu -> 0.5 or in plastic flow "
+          "(doc/formulation.md, \"Near incompressibility\"). It does not help linear triangles "
+          "and tetrahedra, whose gradient is already constant in the cell.");
+    }
+
     /**
      * @brief Declare the `Material` subsection with every registered model, and
      * the slots `Material 2`, `Material 3` that give the bodies they list
@@ -174,9 +192,13 @@ namespace StabilizedLagrangian
           "linear elastic",
           "Constitutive model of the deformable bodies (of every body that no `Material 2`, "
           "`Material 3` slot lists).");
+      prm.enter_subsection("Material");
+      declare_volumetric_formulation(prm);
+      prm.leave_subsection();
       for (unsigned int slot = 1; slot < n_material_slots; ++slot)
         {
           prm.enter_subsection(material_slot(slot));
+          declare_volumetric_formulation(prm);
           prm.declare_entry("Bodies",
                             "",
                             Patterns::List(Patterns::Anything(), 0),
@@ -203,6 +225,8 @@ namespace StabilizedLagrangian
       std::string                     slot;   ///< its subsection, for messages
       std::vector<std::string>        bodies; ///< names or material ids; empty: the default
       std::unique_ptr<Interface<dim>> model;
+      /** `Volumetric formulation = F-bar`: the volume change taken at the cell's centre */
+      bool f_bar = false;
     };
 
     /** @brief The default model (`Material`) first, then every slot in use. */
@@ -212,6 +236,9 @@ namespace StabilizedLagrangian
     {
       std::vector<BodyMaterial<dim>> result;
       result.push_back(BodyMaterial<dim>{"Material", {}, create<dim>(prm)});
+      prm.enter_subsection("Material");
+      result.back().f_bar = prm.get("Volumetric formulation") == "F-bar";
+      prm.leave_subsection();
       for (unsigned int slot = 1; slot < n_material_slots; ++slot)
         {
           prm.enter_subsection(material_slot(slot));
@@ -221,6 +248,7 @@ namespace StabilizedLagrangian
               {
                 result.push_back(
                     BodyMaterial<dim>{material_slot(slot), bodies, Registry<dim>::create(prm)});
+                result.back().f_bar = prm.get("Volumetric formulation") == "F-bar";
               }
             catch (const InputError &error)
               {

@@ -26,6 +26,7 @@
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
+#include <stabilized_lagrangian/materials/f_bar.h>
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
@@ -982,8 +983,14 @@ namespace StabilizedLagrangian
     const Materials::Interface<dim> &
     material_of(const typename Triangulation<dim>::cell_iterator &cell) const
     {
+      return *body_of(cell).model;
+    }
+    /** The material slot of a cell: its model and formulation. */
+    const Materials::BodyMaterial<dim> &
+    body_of(const typename Triangulation<dim>::cell_iterator &cell) const
+    {
       const auto slot = material_slots.find(cell->material_id());
-      return *materials[slot == material_slots.end() ? 0 : slot->second].model;
+      return materials[slot == material_slots.end() ? 0 : slot->second];
     }
     /**
      * The response of @p cell's material at its quadrature point @p q for
@@ -998,8 +1005,31 @@ namespace StabilizedLagrangian
     {
       const auto          history = material_history.committed(cell->active_cell_index(), q);
       std::vector<double> discarded(history.size());
-      return material_of(cell).evaluate(grad_u, history, make_array_view(discarded));
+      const auto         &body = body_of(cell);
+      if (!body.f_bar)
+        return body.model->evaluate(grad_u, history, make_array_view(discarded));
+      // F-bar: the weak-form stress P̃ (its Cauchy stress is that of F̄) and ∂P̃/∂F.
+      // The estimate evaluates it between the quadrature points too, where a
+      // cell whose quadrature points are admissible may be inverted (J ≤ 0 at a
+      // face point of an hourglassing cell): there, the centre's state.
+      const Tensor<2, dim> &centre = centre_gradients[cell->active_cell_index()];
+      const bool            finite = body.model->is_finite_strain();
+      const bool admissible = !finite || determinant(unit_symmetric_tensor<dim>() + grad_u) > 0.;
+      const Materials::FBar<dim>     f_bar(admissible ? grad_u : centre, centre, finite);
+      const Materials::Response<dim> response =
+          body.model->evaluate(f_bar.modified_gradient(), history, make_array_view(discarded));
+      Materials::Response<dim> weak = response;
+      Tensor<4, dim>           d_centre;
+      f_bar.weak_form(response, weak.stress, weak.tangent, d_centre);
+      return weak;
     }
+    /**
+     * F-bar: the gradient of @p u at the centre of every cell this rank
+     * holds (owned and ghost), for committed_response(); nothing when no
+     * material slot asks for F-bar.
+     */
+    void
+    compute_centre_gradients(const TrilinosWrappers::MPI::Vector &u) const;
     void
     assemble_volume(const bool assemble_matrix);
     void
@@ -1236,6 +1266,8 @@ namespace StabilizedLagrangian
     /** Set by an assembly that met a material state outside its admissible range. */
     std::string inadmissible_state;
 
+    /** F-bar: ∇u at each cell's centre for the output and the error estimate (by active index) */
+    mutable std::vector<Tensor<2, dim>>                          centre_gradients;
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation_storage;
     parallel::DistributedTriangulationBase<dim>                 &triangulation;
     /** simplex meshes: uniform refinements beyond the geometry's (refine_globally) */
