@@ -4,7 +4,9 @@
 The elastic patin of prm/patin_elastic.prm with nu = 0.4999 (pressed by 0.5 mm, then slid):
 with Q1/P1 on its 32 x 16 cells the displacement formulation locks (the normal force more than
 1.5 times that of Q2/P2 on the mesh refined once more), while F-bar gives the Q2/P2 force within
-1 % (the issue's bound), on 1 and 2 MPI ranks (the same force to 1e-8).
+1 % (the issue's bound), on 1 and 2 MPI ranks (the same force to 1e-8), and the generalized
+Newton reaches the nested loops' force to 1e-6. The contact patch test between two bodies
+(prm/contact_patch_test.prm, nu = 0.4999, F-bar, 2 ranks) keeps its exact uniform pressure.
 
 Hertz's cylinder (prm/hertz_cylinder.prm, one load step; the closed form holds for any nu) with
 nu = 0.4999 and Q1/P1: the displacement formulation's pressure is off by more than 50 % (L2),
@@ -59,6 +61,22 @@ check(locked > 1.5 * reference, f"patin, Q1/P1 displacement formulation locks: F
 check(abs(f_bar - reference) < 0.01 * reference, f"patin, Q1/P1 F-bar: F_n = {f_bar:.0f} N, "
       f"{(f_bar - reference) / reference:+.2%} from Q2/P2's")
 check(abs(f_bar_2 - f_bar) < 1e-8 * f_bar, f"patin, Q1/P1 F-bar on 2 ranks: F_n = {f_bar_2:.4f} N")
+f_bar_newton = normal_force("Q1P1-F-bar-newton", patin + formulation("F-bar") + sltest.GENERALIZED_NEWTON)
+check(abs(f_bar_newton - f_bar) < 1e-6 * f_bar,
+      f"patin, Q1/P1 F-bar, generalized Newton: F_n = {f_bar_newton:.4f} N, the nested loops' to 1e-6")
+
+# --- two bodies: the contact patch test at nu = 0.4999 with F-bar ------------------------------
+# a uniform stress is a homogeneous deformation, which F-bar leaves unchanged: the pressure is
+# the applied one at every node on the non-matching interface
+patch = sltest.read_prm(os.path.join(root, "prm", "contact_patch_test.prm"))
+check("set Poisson's ratio = 0.3" in patch, "prm/contact_patch_test.prm sets nu = 0.3")
+out = f"{workdir}/patch-F-bar"
+sltest.run(executable, patch.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {NU}")
+           + formulation("F-bar"), out, ranks=2)
+values = [row["contact_pressure_MPa"] for row in sltest.last_profile(out + "/output")]
+error = max(abs(v - 100.) for v in values) / 100.
+check(values and error < 1e-8, f"contact patch test, F-bar, nu = {NU}, 2 ranks: {len(values)} nodes, "
+      f"max |p - 100| / 100 = {error:.1e}")
 
 # --- Hertz ---------------------------------------------------------------------------------
 
