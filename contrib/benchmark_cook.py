@@ -19,6 +19,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cook_membrane  # noqa: E402
 import robustness_map  # noqa: E402
 import tool_cli  # noqa: E402
 
@@ -44,9 +45,7 @@ VARIANTS = [("Q1/P1", "displacement"), ("Q1/P1", "F-bar"), ("Q2/P1", "displaceme
 def corner_displacement(n, pair, formulation):
     directory = os.path.join(workdir, f"n{n}-{pair.replace('/', '')}-{formulation}")
     os.makedirs(directory, exist_ok=True)
-    geo = os.path.join(directory, "cook.geo")
-    with open(geo, "w") as f:
-        f.write(f"n = {n};\nInclude \"{os.path.join(tool_cli.ROOT, 'prm', 'meshes', 'cook_membrane.geo')}\";\n")
+    geo = cook_membrane.mesh_file(directory, n)
     text = scene + robustness_map.nested_set("Geometry/gmsh/Mesh file", geo) + \
         robustness_map.nested_set("Contact/Finite element pair", pair) + \
         robustness_map.nested_set("Material/Volumetric formulation", formulation) + robustness_map.OUTPUT_SECTION
@@ -61,8 +60,7 @@ def corner_displacement(n, pair, formulation):
         summary = next(csv.DictReader(f))
     profile_name = sorted(p for p in os.listdir(out) if p.startswith("profile-"))[-1]
     with open(os.path.join(out, profile_name)) as f:
-        corner = min(csv.DictReader(f), key=lambda r: abs(float(r["x_mm"]) - 48) + abs(float(r["y_mm"]) - 44))
-    value = float(corner["gap_mm"]) - 144.
+        value = cook_membrane.corner_displacement(csv.DictReader(f))
     print(f"  n = {n:3d} {pair} {formulation:12s}: u_y = {value:.4f} mm")
     return {"dofs": int(summary["displacement_dofs"]) + int(summary["multiplier_dofs"]),
             "newton": int(summary["newton_iterations"]), "u_y": value}

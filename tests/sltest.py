@@ -1,5 +1,6 @@
 """Helpers for the scene tests: run the program on a parameter file and read its CSV output."""
 import csv
+import math
 import os
 import re
 import subprocess
@@ -115,3 +116,21 @@ class Checker:
     def finish(self):
         print("FAILED" if self.failures else "PASSED")
         sys.exit(1 if self.failures else 0)
+
+
+def check_hertz_sequence(check, runs, name, lowest_order):
+    """Checks of Hertz runs on three nested meshes (contrib/hertz_errors.py's dicts, coarse to
+    fine): the L2 and peak pressure errors fall, the L2 order over the two refinements lies in
+    (lowest_order, 1.5) (about 1 asymptotically: the square-root edge of the pressure; level to
+    level it varies with where the edge falls between two nodes), and the half-width, that of the
+    last node in contact, is within one contact cell of Hertz's (h / a)."""
+    for key, title in (("l2_error", "L2 error of the pressure"), ("peak_error", "peak pressure error")):
+        values = [abs(r[key]) for r in runs]
+        check(values[0] > values[1] > values[2], f"{name}: the {title} falls, "
+              + ", ".join(f"{v:.2%}" for v in values))
+    order = math.log(runs[0]["l2_error"] / runs[2]["l2_error"]) / math.log(runs[0]["h_mm"] / runs[2]["h_mm"])
+    check(lowest_order < order < 1.5, f"{name}: L2 order {order:.2f} in h over two refinements")
+    for r in runs:
+        check(abs(r["half_width_error"]) <= r["h_mm"] / r["a_hertz_mm"],
+              f"{name}, h = {r['h_mm']:.3f} mm: half-width error {abs(r['half_width_error']):.2%} "
+              f"<= h / a = {r['h_mm'] / r['a_hertz_mm']:.2%}")

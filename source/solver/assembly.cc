@@ -308,10 +308,9 @@ namespace StabilizedLagrangian
           cell->get_dof_indices(dofs);
           for (unsigned int i = 0; i < n_dofs; ++i)
             coefficients[i] = ghosted_solution(dofs[i]);
-          const Materials::BodyMaterial<dim> &body     = body_of(cell);
-          const Materials::Interface<dim>    &material = *body.model;
-          cell_matrix                                  = 0.;
-          cell_rhs                                     = 0.;
+          const Materials::BodyMaterial<dim> &body = body_of(cell);
+          cell_matrix                              = 0.;
+          cell_rhs                                 = 0.;
           Tensor<2, dim> centre_grad_u;
           if (body.f_bar)
             {
@@ -325,30 +324,16 @@ namespace StabilizedLagrangian
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
               Materials::Response<dim> response;
-              // the weak-form stress and its derivatives at the point and the centre
-              Tensor<2, dim> stress;
-              Tensor<4, dim> d_point, d_centre;
+              Tensor<4, dim>           d_centre; // F-bar: ∂P̃/∂F₀
               try
                 {
-                  if (body.f_bar)
-                    {
-                      const Materials::FBar<dim> f_bar(
-                          grad_u, centre_grad_u, material.is_finite_strain());
-                      response = material.evaluate(
-                          f_bar.modified_gradient(),
-                          material_history.committed(cell->active_cell_index(), q),
-                          material_history.trial(cell->active_cell_index(), q));
-                      f_bar.weak_form(response, stress, d_point, d_centre);
-                    }
-                  else
-                    {
-                      response = material.evaluate(
-                          grad_u,
-                          material_history.committed(cell->active_cell_index(), q),
-                          material_history.trial(cell->active_cell_index(), q));
-                      stress  = response.stress;
-                      d_point = response.tangent;
-                    }
+                  response =
+                      material_response(body,
+                                        grad_u,
+                                        centre_grad_u,
+                                        material_history.committed(cell->active_cell_index(), q),
+                                        material_history.trial(cell->active_cell_index(), q),
+                                        &d_centre);
                 }
               catch (const Materials::InadmissibleState &error)
                 {
@@ -359,7 +344,7 @@ namespace StabilizedLagrangian
                 }
               const double JxW = fe_values.JxW(q);
               for (unsigned int i = 0; i < n_dofs; ++i)
-                cell_rhs(i) += stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
+                cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
               if (!assemble_matrix)
                 continue;
               // A : ∇φ_j, where ∇φ_j has only the row component[j] (with F-bar
@@ -369,7 +354,7 @@ namespace StabilizedLagrangian
                   const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
                   for (unsigned int k = 0; k < dim; ++k)
                     for (unsigned int l = 0; l < dim; ++l)
-                      tangent_times_grad[j][k][l] = d_point[k][l][component[j]] * g;
+                      tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
                   if (body.f_bar)
                     {
                       const Tensor<1, dim> &g0 = centre_values.shape_grad(j, 0);

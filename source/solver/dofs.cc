@@ -50,6 +50,14 @@ namespace StabilizedLagrangian
   {
     fe_u = fe_pair->displacement_element();
     fe_m = fe_pair->multiplier_element(friction_law->has_friction() ? dim : 1);
+    multiplier_dofs_on_face.assign(fe_m->reference_cell().n_faces(), {});
+    for (unsigned int face = 0; face < multiplier_dofs_on_face.size(); ++face)
+      {
+        auto &on_face = multiplier_dofs_on_face[face];
+        for (unsigned int j = 0; j < fe_m->n_dofs_per_face(face); ++j)
+          on_face.push_back(fe_m->face_to_cell_index(j, face));
+        std::sort(on_face.begin(), on_face.end());
+      }
     dof_handler_u.distribute_dofs(*fe_u);
     dof_handler_m.distribute_dofs(*fe_m);
     setup_multiplier_numbering();

@@ -866,18 +866,11 @@ namespace StabilizedLagrangian
                   f(dofs[i], i);
               }
     }
-    /**
-     * The multiplier element's DoFs on face @p face of a cell, ascending (the
-     * face's own DoFs: FE_SimplexP's has_support_on_face() says true for all).
-     */
-    std::vector<unsigned int>
+    /** The multiplier element's DoFs on face @p face of a cell, ascending (setup_dofs()). */
+    const std::vector<unsigned int> &
     multiplier_face_dofs(const unsigned int face) const
     {
-      std::vector<unsigned int> on_face;
-      for (unsigned int j = 0; j < fe_m->n_dofs_per_face(face); ++j)
-        on_face.push_back(fe_m->face_to_cell_index(j, face));
-      std::sort(on_face.begin(), on_face.end());
-      return on_face;
+      return multiplier_dofs_on_face[face];
     }
     /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
     void
@@ -1008,19 +1001,38 @@ namespace StabilizedLagrangian
       const auto         &body = body_of(cell);
       if (!body.f_bar)
         return body.model->evaluate(grad_u, history, make_array_view(discarded));
-      // F-bar: the weak-form stress P̃ (its Cauchy stress is that of F̄) and ∂P̃/∂F.
-      // The estimate evaluates it between the quadrature points too, where a
-      // cell whose quadrature points are admissible may be inverted (J ≤ 0 at a
-      // face point of an hourglassing cell): there, the centre's state.
-      const Tensor<2, dim> &centre = centre_gradients[cell->active_cell_index()];
-      const bool            finite = body.model->is_finite_strain();
-      const bool admissible = !finite || determinant(unit_symmetric_tensor<dim>() + grad_u) > 0.;
-      const Materials::FBar<dim>     f_bar(admissible ? grad_u : centre, centre, finite);
+      // The estimate evaluates the stress between the quadrature points too,
+      // where a cell whose quadrature points are admissible may be inverted
+      // (J ≤ 0 at a face point of an hourglassing cell): there, the centre's state.
+      const Tensor<2, dim> &centre     = centre_gradients[cell->active_cell_index()];
+      const bool            admissible = !body.model->is_finite_strain() ||
+                              determinant(unit_symmetric_tensor<dim>() + grad_u) > 0.;
+      return material_response(
+          body, admissible ? grad_u : centre, centre, history, make_array_view(discarded), nullptr);
+    }
+    /**
+     * The response of @p body's model at one quadrature point from the
+     * history @p committed (the updated one into @p trial): P and ∂P/∂F at
+     * @p grad_u; with F-bar the weak-form stress P̃, ∂P̃/∂F and, into
+     * @p d_centre when given, ∂P̃/∂F₀ through the gradient at the cell's
+     * centre @p centre_grad_u (include/stabilized_lagrangian/materials/f_bar.h).
+     */
+    Materials::Response<dim>
+    material_response(const Materials::BodyMaterial<dim> &body,
+                      const Tensor<2, dim>               &grad_u,
+                      const Tensor<2, dim>               &centre_grad_u,
+                      const ArrayView<const double>      &committed,
+                      const ArrayView<double>            &trial,
+                      Tensor<4, dim>                     *d_centre) const
+    {
+      if (!body.f_bar)
+        return body.model->evaluate(grad_u, committed, trial);
+      const Materials::FBar<dim>     f_bar(grad_u, centre_grad_u, body.model->is_finite_strain());
       const Materials::Response<dim> response =
-          body.model->evaluate(f_bar.modified_gradient(), history, make_array_view(discarded));
+          body.model->evaluate(f_bar.modified_gradient(), committed, trial);
       Materials::Response<dim> weak = response;
-      Tensor<4, dim>           d_centre;
-      f_bar.weak_form(response, weak.stress, weak.tangent, d_centre);
+      Tensor<4, dim>           unused;
+      f_bar.weak_form(response, weak.stress, weak.tangent, d_centre ? *d_centre : unused);
       return weak;
     }
     /**
@@ -1273,9 +1285,14 @@ namespace StabilizedLagrangian
     /** simplex meshes: uniform refinements beyond the geometry's (refine_globally) */
     unsigned int                        extra_refinements = 0;
     std::unique_ptr<FiniteElement<dim>> fe_u, fe_m;
-    DoFHandler<dim>                     dof_handler_u, dof_handler_m;
-    Quadrature<dim>                     cell_quadrature;
-    Quadrature<dim - 1>                 contact_quadrature;
+    /**
+     * per face number, fe_m's DoFs on that face, ascending (the face's own
+     * DoFs: FE_SimplexP's has_support_on_face() says true for all)
+     */
+    std::vector<std::vector<unsigned int>> multiplier_dofs_on_face;
+    DoFHandler<dim>                        dof_handler_u, dof_handler_m;
+    Quadrature<dim>                        cell_quadrature;
+    Quadrature<dim - 1>                    contact_quadrature;
 
     types::global_dof_index n_u           = 0;
     types::global_dof_index n_multipliers = 0;
