@@ -68,7 +68,7 @@ def write_section(path, begin, end, block):
     if os.path.exists(path):
         with open(path) as f:
             text = f.read()
-    pattern = re.compile(re.escape(begin) + ".*?" + re.escape(end) + "\n?", re.S)
+    pattern = re.compile(re.escape(begin) + ".*?" + re.escape(end), re.S)
     if pattern.search(text):
         text = pattern.sub(lambda _: block, text)
     else:

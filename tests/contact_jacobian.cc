@@ -4,9 +4,10 @@
 // Gauss-Lobatto and Gauss contact quadrature. Then the generalized Newton's
 // Jacobian, with the geometry, friction and status loops folded into Newton,
 // on a curved obstacle: statuses, thresholds and pairings follow the iterate.
-// Then the volume terms of `Volumetric formulation = F-bar`: B-bar (linear
-// elastic) and F-bar (neo-Hookean), whose tangent also runs through the
-// gradient at each cell's centre.
+// Then the volume terms of `Volumetric formulation = F-bar` and `mixed`: B-bar
+// (linear elastic) and F-bar (neo-Hookean), whose tangent also runs through the
+// gradient at each cell's centre, and the condensed three-field formulation
+// (Q1/P0, Q2/P1disc), whose tangent runs through every quadrature point's.
 
 #include <deal.II/base/mpi.h>
 
@@ -108,18 +109,17 @@ end
    * the iterate and @p state only chooses the semi-multipliers (stick or slip)
    */
   /**
-   * `Volumetric formulation = F-bar` (near incompressible, ν = 0.45): the
-   * B-bar of the linear elastic model, or F-bar with the neo-Hookean model
-   * (C10 = 0.2: E = 1.16, the soft block of the scene).
+   * `Volumetric formulation = ` @p formulation (near incompressible,
+   * ν = 0.45) with the pair @p pair: with the linear elastic model in small
+   * strain, or with the neo-Hookean model (C10 = 0.2: E = 1.16, the soft
+   * block of the scene).
    */
   std::string
-  f_bar(const bool finite_strain)
+  volumetric(const std::string &formulation, const std::string &pair, const bool finite_strain)
   {
-    return std::string(R"(
-subsection Material
-  set Volumetric formulation = F-bar
-  set Model = )") +
-           (finite_strain ? "neo-Hookean" : "linear elastic") + R"(
+    return "subsection Contact\n  set Finite element pair = " + pair +
+           "\nend\nsubsection Material\n  set Volumetric formulation = " + formulation +
+           "\n  set Model = " + (finite_strain ? "neo-Hookean" : "linear elastic") + R"(
   subsection linear elastic
     set Poisson's ratio = 0.45
   end
@@ -282,15 +282,21 @@ main(int argc, char *argv[])
             test<2>(state, quadrature, mu, generalized);
             test<3>(state, quadrature, mu, generalized);
           }
-  // F-bar's tangent (through the cell centre's gradient), with displacements of
-  // 5 % of the cell size so that the finite-strain terms count
-  for (const bool finite_strain : {false, true})
-    for (const State state : {State::open, State::slip})
-      {
-        const std::string label = finite_strain ? "F-bar neo-Hookean " : "B-bar linear elastic ";
-        test<2>(state, "Gauss-Lobatto", 0.3, false, f_bar(finite_strain), 2.5e-2, label);
-        test<3>(state, "Gauss-Lobatto", 0.3, false, f_bar(finite_strain), 2.5e-2, label);
-      }
+  // F-bar's tangent (through the cell centre's gradient) and the mixed one
+  // (through the projection from every quadrature point), with displacements
+  // of 5 % of the cell size so that the finite-strain terms count
+  for (const auto &[formulation, pair] : {std::make_pair("F-bar", "Q1/P1"),
+                                          std::make_pair("mixed", "Q1/P1"),
+                                          std::make_pair("mixed", "Q2/P2")})
+    for (const bool finite_strain : {false, true})
+      for (const State state : {State::open, State::slip})
+        {
+          const std::string label = std::string(formulation) + " " + pair +
+                                    (finite_strain ? " neo-Hookean " : " linear elastic ");
+          const std::string prm = volumetric(formulation, pair, finite_strain);
+          test<2>(state, "Gauss-Lobatto", 0.3, false, prm, 2.5e-2, label);
+          test<3>(state, "Gauss-Lobatto", 0.3, false, prm, 2.5e-2, label);
+        }
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""Near incompressibility (nu = 0.4999) with `Material/Volumetric formulation = F-bar`.
+"""Near incompressibility (nu = 0.4999) with `Material/Volumetric formulation = F-bar` and `mixed`.
 
 The elastic patin of prm/patin_elastic.prm with nu = 0.4999 (pressed by 0.5 mm, then slid):
 with Q1/P1 on its 32 x 16 cells the displacement formulation locks (the normal force more than
 1.5 times that of Q2/P2 on the mesh refined once more), while F-bar gives the Q2/P2 force within
 1 % (the issue's bound), on 1 and 2 MPI ranks (the same force to 1e-8), and the generalized
-Newton reaches the nested loops' force to 1e-6. The contact patch test between two bodies
+Newton reaches the nested loops' force to 1e-6. Mixed with Q2/P1 (Q2/P1disc) on the same cells
+gives it within 1 % too (the same on 2 ranks to 1e-8), and mixed with P2/P1 on the triangles of
+prm/patin_elastic_triangles.prm within 1 %; mixed with P1/P1 on triangles is refused with a
+message naming P2. The contact patch test between two bodies
 (prm/contact_patch_test.prm, nu = 0.4999, F-bar, 2 ranks) keeps its exact uniform pressure.
 
 Hertz's cylinder (prm/hertz_cylinder.prm, one load step; the closed form holds for any nu) with
@@ -17,7 +20,9 @@ and its half-width is within one contact cell of Hertz's.
 Cook's membrane (prm/cook_membrane.prm, nu = 0.4999, small strain): with F-bar the corner's
 vertical displacement grows and converges on 4, 8, 16 cells per edge (each difference less than
 0.6 times the one before), within 2 % of Q2/P1's on 16 x 16, where the displacement formulation
-gives less than half of it."""
+gives less than half of it. Q2/P1 mixed has converged from 4 cells per edge on (its values on 4,
+8, 16 within 0.5 % of each other, where F-bar's move by 8 % and 2.7 %), within 2 % of F-bar's on
+16 x 16."""
 import os
 import sys
 import sltest
@@ -61,6 +66,26 @@ check(locked > 1.5 * reference, f"patin, Q1/P1 displacement formulation locks: F
 check(abs(f_bar - reference) < 0.01 * reference, f"patin, Q1/P1 F-bar: F_n = {f_bar:.0f} N, "
       f"{(f_bar - reference) / reference:+.2%} from Q2/P2's")
 check(abs(f_bar_2 - f_bar) < 1e-8 * f_bar, f"patin, Q1/P1 F-bar on 2 ranks: F_n = {f_bar_2:.4f} N")
+mixed = normal_force("Q2P1-mixed", patin.replace("set Finite element pair  = Q1/P1", "set Finite element pair  = Q2/P1")
+                     + formulation("mixed"))
+mixed_2 = normal_force("Q2P1-mixed-2-ranks", patin.replace("set Finite element pair  = Q1/P1",
+                                                           "set Finite element pair  = Q2/P1")
+                       + formulation("mixed"), ranks=2)
+check(abs(mixed - reference) < 0.01 * reference, f"patin, Q2/P1 mixed: F_n = {mixed:.0f} N, "
+      f"{(mixed - reference) / reference:+.2%} from Q2/P2's")
+check(abs(mixed_2 - mixed) < 1e-8 * mixed, f"patin, Q2/P1 mixed on 2 ranks: F_n = {mixed_2:.4f} N")
+triangles = sltest.read_prm(os.path.join(root, "prm", "patin_elastic_triangles.prm"))
+for entry in ("set Poisson's ratio = 0.3", "set Finite element pair  = P1/P1"):
+    check(entry in triangles, f"prm/patin_elastic_triangles.prm sets '{entry}'")
+triangles = triangles.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {NU}")
+p2 = triangles.replace("set Finite element pair  = P1/P1", "set Finite element pair  = P2/P1")
+p2_mixed = normal_force("P2P1-mixed", p2 + formulation("mixed"))
+check(abs(p2_mixed - reference) < 0.01 * reference, f"patin on triangles, P2/P1 mixed: F_n = {p2_mixed:.0f} N, "
+      f"{(p2_mixed - reference) / reference:+.2%} from Q2/P2's")
+code, log = sltest.run(executable, triangles + formulation("mixed"), f"{workdir}/patin-P1P1-mixed",
+                       expect_success=False)
+check(code == 1 and "Material/Volumetric formulation = mixed" in log and "P2/P1" in log,
+      f"patin on triangles, P1/P1 mixed: refused naming the entry and P2 (exit code {code})")
 f_bar_newton = normal_force("Q1P1-F-bar-newton", patin + formulation("F-bar") + sltest.GENERALIZED_NEWTON)
 check(abs(f_bar_newton - f_bar) < 1e-6 * f_bar,
       f"patin, Q1/P1 F-bar, generalized Newton: F_n = {f_bar_newton:.4f} N, the nested loops' to 1e-6")
@@ -114,11 +139,15 @@ def cook_corner(n, pair, name):
 
 
 f_bar = [cook_corner(n, "Q1/P1", "F-bar") for n in (4, 8, 16)]
+q2_mixed = [cook_corner(n, "Q2/P1", "mixed") for n in (4, 8, 16)]
 quadratic = cook_corner(16, "Q2/P1", "displacement")
 locked = cook_corner(16, "Q1/P1", "displacement")
 check(f_bar[0] < f_bar[1] < f_bar[2] and f_bar[2] - f_bar[1] < 0.6 * (f_bar[1] - f_bar[0]),
       f"Cook, Q1/P1 F-bar converges: {', '.join(f'{v:.4f}' for v in f_bar)} mm on 4, 8, 16 cells per edge")
 check(abs(f_bar[2] - quadratic) < 0.02 * quadratic,
       f"Cook, 16 x 16: F-bar {f_bar[2]:.4f} mm within 2 % of Q2/P1's {quadratic:.4f} mm")
+check(max(q2_mixed) - min(q2_mixed) < 0.005 * q2_mixed[2] and abs(q2_mixed[2] - f_bar[2]) < 0.02 * f_bar[2],
+      f"Cook, Q2/P1 mixed converged from 4 cells per edge on: {', '.join(f'{v:.4f}' for v in q2_mixed)} mm "
+      f"on 4, 8, 16 (spread under 0.5 %), within 2 % of F-bar's on 16 x 16")
 check(locked < 0.5 * f_bar[2], f"Cook, 16 x 16: the Q1 displacement formulation locks, {locked:.4f} mm")
 check.finish()

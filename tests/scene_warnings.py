@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Scenes that run but not as the user meant are named in a warning.
 
-- Volumetric locking: the patin (Q1/P1) with nu = 0.4999 (K = 3333 G) is far too
-  stiff; the run must warn, naming the material's subsection, the pair and the
-  F-bar formulation; with nu = 0.3, with Q2 displacements at nu = 0.49, or with
-  `Volumetric formulation = F-bar`, it must not.
+- Volumetric locking: the patin (Q1/P1, and Q2/P1) with nu = 0.4999 (K = 3333 G)
+  is far too stiff; the run must warn, naming the material's subsection, the pair
+  and the F-bar formulation; with nu = 0.3, with Q2 displacements at nu = 0.49, or
+  with `Volumetric formulation = F-bar` (Q1) or `mixed` (Q2), it must not.
 - A prescribed displacement not zero at t = 0 (`0; -0.015`, constant in t) is
   applied whole in the first step, and cutting that step cannot reduce it: the
   run must warn, naming the entry; and r_t = automatic must take the length of
@@ -33,7 +33,9 @@ for name, nu, pair, warned, extra in (
         ("Q1 nu=0.4999", 0.4999, "Q1/P1", True, ""),
         ("Q1 nu=0.3", 0.3, "Q1/P1", False, ""),
         ("Q2 nu=0.49", 0.49, "Q2/P1", False, ""),
-        ("Q1 nu=0.4999 F-bar", 0.4999, "Q1/P1", False, sltest.nested_set("Material/Volumetric formulation", "F-bar"))):
+        ("Q1 nu=0.4999 F-bar", 0.4999, "Q1/P1", False, sltest.nested_set("Material/Volumetric formulation", "F-bar")),
+        ("Q2 nu=0.4999", 0.4999, "Q2/P1", True, ""),
+        ("Q2 nu=0.4999 mixed", 0.4999, "Q2/P1", False, sltest.nested_set("Material/Volumetric formulation", "mixed"))):
     log = run(name.replace(" ", "_"), patin.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {nu}")
               .replace("set Finite element pair  = Q1/P1", f"set Finite element pair  = {pair}") + extra)
     said = "locks volumetrically" in log

@@ -106,7 +106,7 @@ namespace StabilizedLagrangian
                                              std::vector<Vector<float>> &cell_history_fields) const
   {
     const unsigned int n_cells = triangulation.n_active_cells();
-    compute_centre_gradients(u);
+    compute_volume_fields(u);
     cell_stress.assign(n_cells, Tensor<2, 3>());
     const std::vector<std::string> names = history_field_names();
     cell_history_fields.assign(names.size(), Vector<float>(n_cells));
@@ -125,8 +125,9 @@ namespace StabilizedLagrangian
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
-              const auto history  = material_history.committed(index, q);
-              const auto response = committed_response(cell, q, gradients[q]);
+              const auto history = material_history.committed(index, q);
+              const auto response =
+                  committed_response(cell, q, cell_quadrature.point(q), gradients[q]);
               cell_stress[index] +=
                   weight *
                   Materials::cauchy_stress(gradients[q], response, material.is_finite_strain());

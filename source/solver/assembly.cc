@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -286,14 +287,14 @@ namespace StabilizedLagrangian
     const FiniteElement<dim> &fe = *fe_u;
     FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
     // F-bar: the gradient at the cell's centre (the one-point Gauss rule)
-    FEValues<dim>                        centre_values(fe, cell_gauss(1), update_gradients);
-    FEFaceValues<dim>                    neumann_values(fe,
+    FEValues<dim>      centre_values(fe, cell_gauss(1), update_gradients | update_JxW_values);
+    FEFaceValues<dim>  neumann_values(fe,
                                      face_gauss(fe_pair->displacement_degree() + 1),
                                      update_values | update_quadrature_points | update_JxW_values);
-    const unsigned int                   n_dofs = fe.n_dofs_per_cell();
-    const unsigned int                   n_q    = cell_quadrature.size();
-    FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
-    Vector<double>                       cell_rhs(n_dofs), cell_external(n_dofs);
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
+    const unsigned int n_q    = cell_quadrature.size();
+    FullMatrix<double> cell_matrix(n_dofs, n_dofs);
+    Vector<double>     cell_rhs(n_dofs), cell_external(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     std::vector<double>                  coefficients(n_dofs);
     std::vector<unsigned int>            component(n_dofs);
@@ -311,29 +312,45 @@ namespace StabilizedLagrangian
           const Materials::BodyMaterial<dim> &body = body_of(cell);
           cell_matrix                              = 0.;
           cell_rhs                                 = 0.;
-          Tensor<2, dim> centre_grad_u;
-          if (body.f_bar)
+          // F-bar and mixed: the volume change each point keeps, projected
+          // from the samples (the centre, or the quadrature points)
+          std::optional<Materials::VolumeProjection<dim>> projection;
+          const FEValues<dim>                            *samples = nullptr;
+          if (body.modified_volume())
             {
-              centre_values.reinit(cell);
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                centre_grad_u[component[i]] += coefficients[i] * centre_values.shape_grad(i, 0);
+              projection.emplace(volume_projection(body));
+              if (body.volumetric == Materials::BodyMaterial<dim>::Volumetric::f_bar)
+                {
+                  centre_values.reinit(cell);
+                  samples = &centre_values;
+                }
+              else
+                samples = &fe_values;
+              std::vector<Tensor<2, dim>> sample_gradients(samples->n_quadrature_points);
+              for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  sample_gradients[k][component[i]] += coefficients[i] * samples->shape_grad(i, k);
+              projection->reinit(samples->get_quadrature().get_points(),
+                                 samples->get_JxW_values(),
+                                 sample_gradients);
             }
           for (unsigned int q = 0; q < n_q; ++q)
             {
               Tensor<2, dim> grad_u;
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
+              const Point<dim>        &unit = cell_quadrature.point(q);
               Materials::Response<dim> response;
-              Tensor<4, dim>           d_centre; // F-bar: ∂P̃/∂F₀
+              Tensor<2, dim>           d_kept; // ∂P̃/∂v̄
               try
                 {
                   response =
                       material_response(body,
                                         grad_u,
-                                        centre_grad_u,
+                                        projection ? projection->value(unit) : 0.,
                                         material_history.committed(cell->active_cell_index(), q),
                                         material_history.trial(cell->active_cell_index(), q),
-                                        &d_centre);
+                                        &d_kept);
                 }
               catch (const Materials::InadmissibleState &error)
                 {
@@ -348,19 +365,21 @@ namespace StabilizedLagrangian
               if (!assemble_matrix)
                 continue;
               // A : ∇φ_j, where ∇φ_j has only the row component[j] (with F-bar
-              // also the derivative through the centre's gradient)
+              // and mixed also ∂P̃/∂v̄ ⊗ ∂v̄/∂u_j through the samples)
               for (unsigned int j = 0; j < n_dofs; ++j)
                 {
                   const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
                   for (unsigned int k = 0; k < dim; ++k)
                     for (unsigned int l = 0; l < dim; ++l)
                       tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
-                  if (body.f_bar)
+                  if (projection)
                     {
-                      const Tensor<1, dim> &g0 = centre_values.shape_grad(j, 0);
-                      for (unsigned int k = 0; k < dim; ++k)
-                        for (unsigned int l = 0; l < dim; ++l)
-                          tangent_times_grad[j][k][l] += d_centre[k][l][component[j]] * g0;
+                      double kept_derivative = 0.;
+                      for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
+                        kept_derivative += projection->sample_weight(unit, k) *
+                                           (projection->sample_derivative(k)[component[j]] *
+                                            samples->shape_grad(j, k));
+                      tangent_times_grad[j] += kept_derivative * d_kept;
                     }
                 }
               for (unsigned int i = 0; i < n_dofs; ++i)
@@ -381,20 +400,40 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::compute_centre_gradients(const TrilinosWrappers::MPI::Vector &u) const
+  ContactProblem<dim>::compute_volume_fields(const TrilinosWrappers::MPI::Vector &u) const
   {
-    if (std::none_of(
-            materials.begin(), materials.end(), [](const auto &body) { return body.f_bar; }))
+    if (std::none_of(materials.begin(), materials.end(), [](const auto &body) {
+          return body.modified_volume();
+        }))
       return;
-    FEValues<dim>               centre_values(*fe_u, cell_gauss(1), update_gradients);
-    std::vector<Tensor<2, dim>> gradient(1);
+    FEValues<dim> centre_values(*fe_u, cell_gauss(1), update_gradients | update_JxW_values);
+    FEValues<dim> cell_values(*fe_u, cell_quadrature, update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size()), centre(1);
     centre_gradients.assign(triangulation.n_active_cells(), Tensor<2, dim>());
+    kept_volume_coefficients.assign(triangulation.n_active_cells(), {});
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (!cell->is_artificial())
         {
+          const auto &body = body_of(cell);
+          if (!body.modified_volume())
+            continue;
           centre_values.reinit(cell);
-          centre_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradient);
-          centre_gradients[cell->active_cell_index()] = gradient[0];
+          centre_values[displacement].get_function_gradients(u, centre);
+          centre_gradients[cell->active_cell_index()] = centre[0];
+          Materials::VolumeProjection<dim> projection = volume_projection(body);
+          if (body.volumetric == Materials::BodyMaterial<dim>::Volumetric::f_bar)
+            projection.reinit(centre_values.get_quadrature().get_points(),
+                              centre_values.get_JxW_values(),
+                              centre);
+          else
+            {
+              cell_values.reinit(cell);
+              cell_values[displacement].get_function_gradients(u, gradients);
+              projection.reinit(
+                  cell_quadrature.get_points(), cell_values.get_JxW_values(), gradients);
+            }
+          kept_volume_coefficients[cell->active_cell_index()] = projection.coefficients();
         }
   }
 
@@ -554,31 +593,31 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                           \
-  template void ContactProblem<dim>::update_ghosts();                 \
-  template void ContactProblem<dim>::assemble_newton_system(bool);    \
-  template void ContactProblem<dim>::assemble_volume(bool);           \
-  template void ContactProblem<dim>::compute_centre_gradients(        \
-      const TrilinosWrappers::MPI::Vector &) const;                   \
-  template void ContactProblem<dim>::add_neumann_contribution(        \
-      const typename DoFHandler<dim>::active_cell_iterator &,         \
-      unsigned int,                                                   \
-      Parameters::BoundaryFunction<dim> &,                            \
-      FEFaceValues<dim> &,                                            \
-      Vector<double> &) const;                                        \
-  template void ContactProblem<dim>::assemble_contact(bool);          \
-  template void ContactProblem<dim>::add_neumann_loads(               \
-      const typename DoFHandler<dim>::active_cell_iterator &,         \
-      const std::vector<types::global_dof_index> &,                   \
-      FEFaceValues<dim> &,                                            \
-      Vector<double> &,                                               \
-      Vector<double> &);                                              \
-  template void ContactProblem<dim>::add_to_global_system(            \
-      const FullMatrix<double> &,                                     \
-      Vector<double> &,                                               \
-      const std::vector<types::global_dof_index> &,                   \
-      bool);                                                          \
-  template double         ContactProblem<dim>::residual_norm() const; \
+#define SL_INSTANTIATE(dim)                                                                       \
+  template void ContactProblem<dim>::update_ghosts();                                             \
+  template void ContactProblem<dim>::assemble_newton_system(bool);                                \
+  template void ContactProblem<dim>::assemble_volume(bool);                                       \
+  template void ContactProblem<dim>::compute_volume_fields(const TrilinosWrappers::MPI::Vector &) \
+      const;                                                                                      \
+  template void ContactProblem<dim>::add_neumann_contribution(                                    \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                     \
+      unsigned int,                                                                               \
+      Parameters::BoundaryFunction<dim> &,                                                        \
+      FEFaceValues<dim> &,                                                                        \
+      Vector<double> &) const;                                                                    \
+  template void ContactProblem<dim>::assemble_contact(bool);                                      \
+  template void ContactProblem<dim>::add_neumann_loads(                                           \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                     \
+      const std::vector<types::global_dof_index> &,                                               \
+      FEFaceValues<dim> &,                                                                        \
+      Vector<double> &,                                                                           \
+      Vector<double> &);                                                                          \
+  template void ContactProblem<dim>::add_to_global_system(                                        \
+      const FullMatrix<double> &,                                                                 \
+      Vector<double> &,                                                                           \
+      const std::vector<types::global_dof_index> &,                                               \
+      bool);                                                                                      \
+  template double         ContactProblem<dim>::residual_norm() const;                             \
   template ScaledResidual ContactProblem<dim>::scaled_residual() const;
 
   SL_INSTANTIATE(2)

@@ -202,6 +202,13 @@ namespace StabilizedLagrangian
                        ": use a P pair (P1/P1, P2/P1, P2/P2, or P1/P2 to see an unstable one).");
     if (!simplex_mesh())
       return;
+    for (const auto &material : materials)
+      if (material.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed &&
+          fe_pair->displacement_degree() == 1)
+        throw InputError(material.slot + "/Volumetric formulation = mixed: " + pair +
+                         " has linear displacements, whose volume change is already one per "
+                         "cell, so a cell-wise pressure adds nothing and the body locks. Use "
+                         "P2/P1 or P2/P2 (P2 displacements with a P0 pressure, inf-sup stable).");
     if (adaptive_refinement.cycles > 0)
       throw InputError("Adaptive refinement/Cycles must be 0 on a simplex mesh: its "
                        "distributed triangulation (deal.II 9.4's fully distributed one; p4est "

@@ -81,7 +81,7 @@ namespace StabilizedLagrangian
                                            Vector<double>                      &contact)
   {
     share_ghost_history();
-    compute_centre_gradients(u);
+    compute_volume_fields(u);
     const double energy = add_volume_residuals(u, squared);
     add_face_residuals(u, squared);
     add_contact_residuals(u, contact);
@@ -116,19 +116,20 @@ namespace StabilizedLagrangian
                                  const Tensor<2, dim>                             &grad_u,
                                  const Point<dim>                                 &point) const
   {
-    // the history lives at the cell's quadrature points: the nearest one's
-    unsigned int nearest = 0;
-    if (material_of(cell).n_history() > 0)
-      {
-        const Point<dim> unit = cell->reference_cell()
-                                    .template get_default_linear_mapping<dim>()
-                                    .transform_real_to_unit_cell(cell, point);
-        for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
-          if (cell_quadrature.point(q).distance(unit) <
-              cell_quadrature.point(nearest).distance(unit))
-            nearest = q;
-      }
-    return committed_response(cell, nearest, grad_u).stress;
+    // the history lives at the cell's quadrature points: the nearest one's;
+    // F-bar and mixed evaluate the kept volume change at the point
+    const bool       history = material_of(cell).n_history() > 0;
+    const Point<dim> unit    = history || body_of(cell).modified_volume()
+                                   ? cell->reference_cell()
+                                      .template get_default_linear_mapping<dim>()
+                                      .transform_real_to_unit_cell(cell, point)
+                                   : Point<dim>();
+    unsigned int     nearest = 0;
+    if (history)
+      for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
+        if (cell_quadrature.point(q).distance(unit) < cell_quadrature.point(nearest).distance(unit))
+          nearest = q;
+    return committed_response(cell, nearest, unit, grad_u).stress;
   }
 
   template <int dim>
@@ -152,7 +153,8 @@ namespace StabilizedLagrangian
           double                           residual = 0.;
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
-              const auto response = committed_response(cell, q, gradients[q]);
+              const auto response =
+                  committed_response(cell, q, cell_quadrature.point(q), gradients[q]);
               // div P = A : ∇∇u (A = ∂P/∂F), no body force
               Tensor<1, dim> divergence;
               for (unsigned int i = 0; i < dim; ++i)

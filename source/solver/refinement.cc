@@ -200,7 +200,7 @@ namespace StabilizedLagrangian
     const unsigned int               n_q = cell_quadrature.size();
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
     std::vector<double>              squared(earlier_cycles.size(), 0.);
-    compute_centre_gradients(earlier_cycles.back());
+    compute_volume_fields(earlier_cycles.back());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -208,7 +208,7 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_gradients(earlier_cycles.back(), last);
           std::vector<Tensor<4, dim>> tangents(n_q);
           for (unsigned int q = 0; q < n_q; ++q)
-            tangents[q] = committed_response(cell, q, last[q]).tangent;
+            tangents[q] = committed_response(cell, q, cell_quadrature.point(q), last[q]).tangent;
           for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
             {
               fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);

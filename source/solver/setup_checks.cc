@@ -135,9 +135,11 @@ namespace StabilizedLagrangian
     for (const auto &material : materials)
       {
         const double nu = material.model->poissons_ratio();
-        // F-bar keeps one volume constraint per cell: locking-free on Q1, not on
-        // linear simplices, whose gradient is already constant in the cell
-        if (nu < limit || (material.f_bar && !simplex_mesh()))
+        // F-bar and mixed keep one volume constraint per cell (mixed on Q2:
+        // dim + 1): locking-free on Q1 and Q2, not on linear simplices, whose
+        // gradient is already constant in the cell (mixed is refused there)
+        if (nu < limit || (material.modified_volume() && !simplex_mesh()) ||
+            material.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed)
           continue;
         pcout << "WARNING: " << material.slot << ": Poisson's ratio " << nu << " (bulk modulus "
               << 2. * (1. + nu) / (3. * (1. - 2. * nu))
@@ -146,13 +148,10 @@ namespace StabilizedLagrangian
               << " (Contact/Finite element pair = " << contact_parameters.fe_pair
               << "): the body locks volumetrically, its displacements and forces are far too "
                  "stiff. Use "
-              << (simplex_mesh()
-                      ? "quadratic displacements (P2/P1, P2/P2), which lock much later, or "
-                        "quadrilaterals / hexahedra with "
-                      : "")
-              << material.slot << "/Volumetric formulation = F-bar (locking-free on Q1"
-              << (simplex_mesh() ? "" : ", doc/formulation.md \"Near incompressibility\"")
-              << ").\n";
+              << (simplex_mesh() ? "quadratic displacements (P2/P1, P2/P2) with " : "")
+              << material.slot
+              << "/Volumetric formulation = " << (simplex_mesh() ? "mixed " : "F-bar or mixed ")
+              << "(locking-free; doc/formulation.md \"Near incompressibility\").\n";
       }
   }
 

@@ -1,11 +1,15 @@
 #pragma once
 
+#include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/lac/full_matrix.h>
 
 #include <stabilized_lagrangian/materials/material.h>
 
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace StabilizedLagrangian
 {
@@ -14,44 +18,196 @@ namespace StabilizedLagrangian
     using namespace dealii;
 
     /**
-     * @brief The F-bar kinematics at one quadrature point (`Volumetric
-     * formulation = F-bar`; doc/formulation.md, "Near incompressibility").
+     * @brief The volume change a point of a cell keeps under `Volumetric
+     * formulation = F-bar` or `mixed` (doc/formulation.md, "Near
+     * incompressibility"): v = J = det F in finite strain, v = tr ∇u in small
+     * strain, projected onto a discontinuous space of degree 0 or 1.
+     *
+     * - F-bar: v at the cell's centre (one sample, degree 0).
+     * - mixed: the L² projection of v onto P_k(cell) from the quadrature points
+     *   (the samples, weighted by JxW): the three-field Hu–Washizu formulation
+     *   of Simo, Taylor & Pister (CMAME 51, 1985) with pressure and dilatation
+     *   in P_k, condensed cell by cell. Its stationarity in the pressure gives
+     *   θ = Π_k J, in the dilatation p = Π_k ∂W/∂θ, so the condensed weak form
+     *   is the displacement one with F̄ = (Π_k J / J)^(1/d) F.
+     *
+     * P_1 is spanned by 1 and the reference coordinates ξ − ξ_c about the
+     * reference cell's centre ξ_c.
+     */
+    template <int dim> class VolumeProjection
+    {
+    public:
+      static constexpr unsigned int max_basis = dim + 1;
+
+      VolumeProjection(const unsigned int degree,
+                       const Point<dim>  &reference_centre,
+                       const bool         finite)
+          : degree(degree)
+          , reference_centre(reference_centre)
+          , finite(finite)
+      {
+        Assert(degree <= 1, ExcNotImplemented());
+      }
+
+      /** @brief The number of basis functions of the projection space. */
+      unsigned int
+      n_basis() const
+      {
+        return degree == 0 ? 1 : dim + 1;
+      }
+
+      /** @brief Basis function @p a at the reference point @p unit. */
+      double
+      basis(const unsigned int a, const Point<dim> &unit) const
+      {
+        return a == 0 ? 1. : unit[a - 1] - reference_centre[a - 1];
+      }
+
+      /** @brief v at one point: det F, or tr ∇u in small strain. */
+      double
+      volume_change(const Tensor<2, dim> &grad_u) const
+      {
+        return finite ? determinant(unit_symmetric_tensor<dim>() + grad_u) : trace(grad_u);
+      }
+
+      /** @brief ∂v/∂∇u: the cofactor J F⁻ᵀ, or I in small strain. */
+      Tensor<2, dim>
+      volume_change_derivative(const Tensor<2, dim> &grad_u) const
+      {
+        if (!finite)
+          return unit_symmetric_tensor<dim>();
+        const Tensor<2, dim> F = unit_symmetric_tensor<dim>() + grad_u;
+        return determinant(F) * transpose(invert(F));
+      }
+
+      /**
+       * @brief The projection for one cell from its samples: reference points
+       * @p units, weights @p weights (JxW; any positive value for one sample)
+       * and displacement gradients @p gradients there.
+       */
+      void
+      reinit(const std::vector<Point<dim>>     &units,
+             const std::vector<double>         &weights,
+             const std::vector<Tensor<2, dim>> &gradients)
+      {
+        const unsigned int n_samples = units.size(), n = n_basis();
+        // G = M⁻¹ Ψ W with M = Ψ W Ψᵀ: the coefficients are G v
+        FullMatrix<double> mass(n, n);
+        projector.reinit(n, n_samples);
+        for (unsigned int k = 0; k < n_samples; ++k)
+          for (unsigned int a = 0; a < n; ++a)
+            {
+              projector(a, k) = basis(a, units[k]) * weights[k];
+              for (unsigned int b = 0; b < n; ++b)
+                mass(a, b) += basis(a, units[k]) * basis(b, units[k]) * weights[k];
+            }
+        mass.gauss_jordan();
+        FullMatrix<double> product(n, n_samples);
+        mass.mmult(product, projector);
+        projector = product;
+        sample_derivatives.resize(n_samples);
+        coefficient_values.fill(0.);
+        for (unsigned int k = 0; k < n_samples; ++k)
+          {
+            const double v        = volume_change(gradients[k]);
+            sample_derivatives[k] = volume_change_derivative(gradients[k]);
+            for (unsigned int a = 0; a < n; ++a)
+              coefficient_values[a] += projector(a, k) * v;
+          }
+      }
+
+      /** @brief The coefficients of the projected v (for a cache). */
+      const std::array<double, max_basis> &
+      coefficients() const
+      {
+        return coefficient_values;
+      }
+
+      /** @brief The projected v at @p unit from @p coefficients. */
+      double
+      value(const std::array<double, max_basis> &coefficients, const Point<dim> &unit) const
+      {
+        double result = 0.;
+        for (unsigned int a = 0; a < n_basis(); ++a)
+          result += basis(a, unit) * coefficients[a];
+        return result;
+      }
+
+      /** @brief The projected v at @p unit after reinit(). */
+      double
+      value(const Point<dim> &unit) const
+      {
+        return value(coefficient_values, unit);
+      }
+
+      /**
+       * @brief ∂(projected v at @p unit)/∂∇u at sample @p k: a weight times
+       * sample_derivative(k).
+       */
+      double
+      sample_weight(const Point<dim> &unit, const unsigned int k) const
+      {
+        double result = 0.;
+        for (unsigned int a = 0; a < n_basis(); ++a)
+          result += basis(a, unit) * projector(a, k);
+        return result;
+      }
+
+      /** @brief ∂v/∂∇u at sample @p k. */
+      const Tensor<2, dim> &
+      sample_derivative(const unsigned int k) const
+      {
+        return sample_derivatives[k];
+      }
+
+    private:
+      const unsigned int            degree;
+      const Point<dim>              reference_centre;
+      const bool                    finite;
+      FullMatrix<double>            projector;
+      std::vector<Tensor<2, dim>>   sample_derivatives;
+      std::array<double, max_basis> coefficient_values{};
+    };
+
+    /**
+     * @brief The modified kinematics at one quadrature point (`Volumetric
+     * formulation = F-bar` or `mixed`; doc/formulation.md, "Near
+     * incompressibility"), given the volume change v̄ the point keeps
+     * (VolumeProjection).
      *
      * Finite strain (de Souza Neto, Perić, Dutko, Owen, IJSS 33, 1996): the
-     * model sees F̄ = α F, α = (J₀/J)^(1/d), whose volume change J₀ = det F₀
-     * is that of the cell's centre; the weak form ∫ J σ(F̄) : ∇ₓδu dv reads
-     * ∫ P̃ : ∇δu dV with P̃ = α^(1−d) P(F̄). d = dim: in plane strain F₃₃ = 1
-     * and only the in-plane part carries the volume change.
+     * model sees F̄ = α F, α = (v̄/J)^(1/d); the weak form ∫ J σ(F̄) : ∇ₓδu dv
+     * reads ∫ P̃ : ∇δu dV with P̃ = α^(1−d) P(F̄). d = dim: in plane strain
+     * F₃₃ = 1 and only the in-plane part carries the volume change.
      *
      * Small strain (Hughes, IJNME 15, 1980, B-bar): the model sees
-     * ∇ū = ∇u + (tr ∇u₀ − tr ∇u)/d I, whose trace (the volume change) is
-     * that of the cell's centre.
+     * ∇ū = ∇u + (v̄ − tr ∇u)/d I, whose trace is v̄.
      *
      * The derivatives of the weak-form stress with respect to ∇u at the point
-     * and to ∇u₀ at the centre give the consistent (non-symmetric) tangent.
+     * and to v̄ give the consistent (non-symmetric) tangent.
      */
     template <int dim> class FBar
     {
     public:
-      FBar(const Tensor<2, dim> &grad_u, const Tensor<2, dim> &centre_grad_u, const bool finite)
+      FBar(const Tensor<2, dim> &grad_u, const double kept_volume_change, const bool finite)
           : finite(finite)
+          , kept(kept_volume_change)
       {
         if (!finite)
           {
             modified           = grad_u;
-            const double shift = (trace(centre_grad_u) - trace(grad_u)) / dim;
+            const double shift = (kept - trace(grad_u)) / dim;
             for (unsigned int d = 0; d < dim; ++d)
               modified[d][d] += shift;
             return;
           }
         F              = unit_symmetric_tensor<dim>() + grad_u;
-        F0             = unit_symmetric_tensor<dim>() + centre_grad_u;
-        const double J = determinant(F), J0 = determinant(F0);
-        if (!(J > 0.) || !(J0 > 0.))
-          throw InadmissibleState("F-bar: det F = " + std::to_string(J) +
-                                  " at a quadrature point, " + std::to_string(J0) +
-                                  " at the cell's centre (must be > 0)");
-        alpha    = std::pow(J0 / J, 1. / dim);
+        const double J = determinant(F);
+        if (!(J > 0.) || !(kept > 0.))
+          throw InadmissibleState("Volumetric formulation: det F = " + std::to_string(J) +
+                                  " at a quadrature point, " + std::to_string(kept) +
+                                  " kept by the cell (must be > 0)");
+        alpha    = std::pow(kept / J, 1. / dim);
         modified = alpha * F - unit_symmetric_tensor<dim>();
       }
 
@@ -65,63 +221,55 @@ namespace StabilizedLagrangian
       /**
        * @brief From the material's @p response at the modified gradient: the
        * weak-form stress, and its derivatives with respect to ∇u at the point
-       * (@p d_point) and at the cell's centre (@p d_centre).
+       * (@p d_point) and to the kept volume change v̄ (@p d_kept).
        */
       void
       weak_form(const Response<dim> &response,
                 Tensor<2, dim>      &stress,
                 Tensor<4, dim>      &d_point,
-                Tensor<4, dim>      &d_centre) const
+                Tensor<2, dim>      &d_kept) const
       {
         const Tensor<4, dim> &A = response.tangent;
         if (!finite)
           {
-            // ∂σ/∂∇u (I − I⊗I/d) at the point, ∂σ/∂∇u I⊗I/d at the centre
+            // ∂σ/∂∇u (I − I⊗I/d) at the point, (A : I)/d for v̄
             stress = response.stress;
-            Tensor<2, dim> volumetric; // A : I
             for (unsigned int a = 0; a < dim; ++a)
               for (unsigned int b = 0; b < dim; ++b)
-                for (unsigned int e = 0; e < dim; ++e)
-                  volumetric[a][b] += A[a][b][e][e];
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = 0; b < dim; ++b)
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    d_centre[a][b][c][c] = volumetric[a][b] / dim;
+                {
+                  d_kept[a][b] = 0.;
+                  for (unsigned int e = 0; e < dim; ++e)
+                    d_kept[a][b] += A[a][b][e][e] / dim;
+                  for (unsigned int c = 0; c < dim; ++c)
                     for (unsigned int e = 0; e < dim; ++e)
-                      d_point[a][b][c][e] = A[a][b][c][e] - d_centre[a][b][c][e];
-                  }
+                      d_point[a][b][c][e] = A[a][b][c][e] - (c == e ? d_kept[a][b] : 0.);
+                }
             return;
           }
-        // P̃ = α^(1−d) P̄ with ∂α/∂F = −α F⁻ᵀ/d, ∂α/∂F₀ = α F₀⁻ᵀ/d:
-        // ∂P̃/∂F  = α^(2−d) [A − (A:F) ⊗ F⁻ᵀ/d] + (d−1)/d α^(1−d) P̄ ⊗ F⁻ᵀ
-        // ∂P̃/∂F₀ = α^(2−d) (A:F) ⊗ F₀⁻ᵀ/d − (d−1)/d α^(1−d) P̄ ⊗ F₀⁻ᵀ
+        // P̃ = α^(1−d) P̄ with ∂α/∂F = −α F⁻ᵀ/d, ∂α/∂v̄ = α/(d v̄):
+        // ∂P̃/∂F = α^(2−d) [A − (A:F) ⊗ F⁻ᵀ/d] + (d−1)/d α^(1−d) P̄ ⊗ F⁻ᵀ
+        // ∂P̃/∂v̄ = [α^(2−d) (A:F)/d − (d−1)/d α^(1−d) P̄] / v̄
         const double         scale_P = std::pow(alpha, 1. - dim);
         const double         scale_A = std::pow(alpha, 2. - dim);
-        const Tensor<2, dim> F_inv_T = transpose(invert(F)), F0_inv_T = transpose(invert(F0));
-        Tensor<2, dim>       A_F;
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            A_F[a][b] = scalar_product(A[a][b], F);
-        stress = scale_P * response.stress;
+        const Tensor<2, dim> F_inv_T = transpose(invert(F));
+        stress                       = scale_P * response.stress;
         for (unsigned int a = 0; a < dim; ++a)
           for (unsigned int b = 0; b < dim; ++b)
             {
-              const double volumetric = scale_A * A_F[a][b] / dim;
+              const double volumetric = scale_A * scalar_product(A[a][b], F) / dim;
               const double geometric  = (dim - 1.) / dim * scale_P * response.stress[a][b];
+              d_kept[a][b]            = (volumetric - geometric) / kept;
               for (unsigned int c = 0; c < dim; ++c)
                 for (unsigned int e = 0; e < dim; ++e)
-                  {
-                    d_point[a][b][c][e] =
-                        scale_A * A[a][b][c][e] + (geometric - volumetric) * F_inv_T[c][e];
-                    d_centre[a][b][c][e] = (volumetric - geometric) * F0_inv_T[c][e];
-                  }
+                  d_point[a][b][c][e] =
+                      scale_A * A[a][b][c][e] + (geometric - volumetric) * F_inv_T[c][e];
             }
       }
 
     private:
       const bool     finite;
-      Tensor<2, dim> F, F0, modified;
+      const double   kept;
+      Tensor<2, dim> F, modified;
       double         alpha = 1.;
     };
   } // namespace Materials

@@ -166,15 +166,21 @@ namespace StabilizedLagrangian
       prm.declare_entry(
           "Volumetric formulation",
           "displacement",
-          Patterns::Selection("displacement|F-bar"),
+          Patterns::Selection("displacement|F-bar|mixed"),
           "displacement: the model sees the displacement gradient at each quadrature point. "
           "F-bar: it sees the deformation gradient with its volume change taken at the cell's "
           "centre, F_bar = (J0/J)^(1/dim) F (de Souza Neto, Peric, Dutko, Owen 1996; in small "
           "strain the B-bar of Hughes 1980: the trace of the strain taken at the centre), so that "
           "a cell keeps one volume constraint instead of one per quadrature point: Q1 "
-          "quadrilaterals and hexahedra no longer lock when nu -> 0.5 or in plastic flow "
-          "(doc/formulation.md, \"Near incompressibility\"). It does not help linear triangles "
-          "and tetrahedra, whose gradient is already constant in the cell.");
+          "quadrilaterals and hexahedra no longer lock when nu -> 0.5 or in plastic flow. "
+          "mixed: the three-field displacement-pressure-dilatation formulation (Simo, Taylor, "
+          "Pister 1985) with pressure and dilatation discontinuous, P0 with Q1 (the mean "
+          "dilatation) and with P2 triangles and tetrahedra, P1 with Q2 (Q2/P1disc, inf-sup "
+          "stable), condensed cell by cell so the system keeps the size of the displacement one: "
+          "the model sees F_bar = (Pi J / J)^(1/dim) F with Pi J the L2 projection of det F onto "
+          "the pressure space (doc/formulation.md, \"Near incompressibility\"). Neither helps "
+          "linear triangles and tetrahedra, whose gradient is already constant in the cell: "
+          "mixed is refused there.");
     }
 
     /**
@@ -225,8 +231,28 @@ namespace StabilizedLagrangian
       std::string                     slot;   ///< its subsection, for messages
       std::vector<std::string>        bodies; ///< names or material ids; empty: the default
       std::unique_ptr<Interface<dim>> model;
-      /** `Volumetric formulation = F-bar`: the volume change taken at the cell's centre */
-      bool f_bar = false;
+      /** `Volumetric formulation`: the volume change each point keeps */
+      enum class Volumetric
+      {
+        displacement, ///< its own
+        f_bar,        ///< that of the cell's centre
+        mixed         ///< the projection onto P_k(cell) (condensed three-field)
+      } volumetric = Volumetric::displacement;
+      /** @brief F-bar or mixed: the model sees a modified gradient. */
+      bool
+      modified_volume() const
+      {
+        return volumetric != Volumetric::displacement;
+      }
+      /** @brief Read `Volumetric formulation` in the current subsection. */
+      void
+      parse_volumetric(const ParameterHandler &prm)
+      {
+        const std::string choice = prm.get("Volumetric formulation");
+        volumetric               = choice == "F-bar"   ? Volumetric::f_bar
+                                   : choice == "mixed" ? Volumetric::mixed
+                                                       : Volumetric::displacement;
+      }
     };
 
     /** @brief The default model (`Material`) first, then every slot in use. */
@@ -237,7 +263,7 @@ namespace StabilizedLagrangian
       std::vector<BodyMaterial<dim>> result;
       result.push_back(BodyMaterial<dim>{"Material", {}, create<dim>(prm)});
       prm.enter_subsection("Material");
-      result.back().f_bar = prm.get("Volumetric formulation") == "F-bar";
+      result.back().parse_volumetric(prm);
       prm.leave_subsection();
       for (unsigned int slot = 1; slot < n_material_slots; ++slot)
         {
@@ -248,7 +274,7 @@ namespace StabilizedLagrangian
               {
                 result.push_back(
                     BodyMaterial<dim>{material_slot(slot), bodies, Registry<dim>::create(prm)});
-                result.back().f_bar = prm.get("Volumetric formulation") == "F-bar";
+                result.back().parse_volumetric(prm);
               }
             catch (const InputError &error)
               {

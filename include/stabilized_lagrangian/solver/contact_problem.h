@@ -986,62 +986,84 @@ namespace StabilizedLagrangian
       return materials[slot == material_slots.end() ? 0 : slot->second];
     }
     /**
-     * The response of @p cell's material at its quadrature point @p q for
-     * @p grad_u, from the committed history (that of the last converged
-     * state); the updated history is discarded. For the output and the
-     * error estimate, never the assembly.
+     * The response of @p cell's material at its quadrature point @p q (the
+     * history's) or reference point @p unit for @p grad_u, from the committed history (that of the
+     * last converged state); the updated history is discarded. For the output and the error
+     * estimate, never the assembly.
      */
     Materials::Response<dim>
     committed_response(const typename Triangulation<dim>::cell_iterator &cell,
                        const unsigned int                                q,
+                       const Point<dim>                                 &unit,
                        const Tensor<2, dim>                             &grad_u) const
     {
       const auto          history = material_history.committed(cell->active_cell_index(), q);
       std::vector<double> discarded(history.size());
       const auto         &body = body_of(cell);
-      if (!body.f_bar)
+      if (!body.modified_volume())
         return body.model->evaluate(grad_u, history, make_array_view(discarded));
       // The estimate evaluates the stress between the quadrature points too,
       // where a cell whose quadrature points are admissible may be inverted
       // (J ≤ 0 at a face point of an hourglassing cell): there, the centre's state.
-      const Tensor<2, dim> &centre     = centre_gradients[cell->active_cell_index()];
-      const bool            admissible = !body.model->is_finite_strain() ||
-                              determinant(unit_symmetric_tensor<dim>() + grad_u) > 0.;
-      return material_response(
-          body, admissible ? grad_u : centre, centre, history, make_array_view(discarded), nullptr);
+      const unsigned int                     index      = cell->active_cell_index();
+      const Materials::VolumeProjection<dim> projection = volume_projection(body);
+      const bool                             finite     = body.model->is_finite_strain();
+      const double kept = projection.value(kept_volume_coefficients[index], unit);
+      const bool   admissible =
+          !finite || (determinant(unit_symmetric_tensor<dim>() + grad_u) > 0. && kept > 0.);
+      return material_response(body,
+                               admissible ? grad_u : centre_gradients[index],
+                               admissible ? kept : kept_volume_coefficients[index][0],
+                               history,
+                               make_array_view(discarded),
+                               nullptr);
     }
     /**
      * The response of @p body's model at one quadrature point from the
      * history @p committed (the updated one into @p trial): P and ∂P/∂F at
-     * @p grad_u; with F-bar the weak-form stress P̃, ∂P̃/∂F and, into
-     * @p d_centre when given, ∂P̃/∂F₀ through the gradient at the cell's
-     * centre @p centre_grad_u (include/stabilized_lagrangian/materials/f_bar.h).
+     * @p grad_u; with F-bar or mixed the weak-form stress P̃, ∂P̃/∂F and, into
+     * @p d_kept when given, ∂P̃/∂v̄ for the volume change @p kept the point
+     * keeps (include/stabilized_lagrangian/materials/f_bar.h).
      */
     Materials::Response<dim>
     material_response(const Materials::BodyMaterial<dim> &body,
                       const Tensor<2, dim>               &grad_u,
-                      const Tensor<2, dim>               &centre_grad_u,
+                      const double                        kept,
                       const ArrayView<const double>      &committed,
                       const ArrayView<double>            &trial,
-                      Tensor<4, dim>                     *d_centre) const
+                      Tensor<2, dim>                     *d_kept) const
     {
-      if (!body.f_bar)
+      if (!body.modified_volume())
         return body.model->evaluate(grad_u, committed, trial);
-      const Materials::FBar<dim>     f_bar(grad_u, centre_grad_u, body.model->is_finite_strain());
+      const Materials::FBar<dim>     f_bar(grad_u, kept, body.model->is_finite_strain());
       const Materials::Response<dim> response =
           body.model->evaluate(f_bar.modified_gradient(), committed, trial);
       Materials::Response<dim> weak = response;
-      Tensor<4, dim>           unused;
-      f_bar.weak_form(response, weak.stress, weak.tangent, d_centre ? *d_centre : unused);
+      Tensor<2, dim>           unused;
+      f_bar.weak_form(response, weak.stress, weak.tangent, d_kept ? *d_kept : unused);
       return weak;
     }
     /**
-     * F-bar: the gradient of @p u at the centre of every cell this rank
-     * holds (owned and ghost), for committed_response(); nothing when no
-     * material slot asks for F-bar.
+     * The projection of the volume change of @p body's cells: degree 0 for
+     * F-bar (one sample, the centre) and for mixed on Q1 and simplices, degree 1
+     * for mixed on Q2 (Q2/P1disc).
+     */
+    Materials::VolumeProjection<dim>
+    volume_projection(const Materials::BodyMaterial<dim> &body) const
+    {
+      const bool p1 = body.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed &&
+                      !simplex_mesh() && fe_pair->displacement_degree() == 2;
+      return Materials::VolumeProjection<dim>(
+          p1 ? 1 : 0, cell_gauss(1).point(0), body.model->is_finite_strain());
+    }
+    /**
+     * F-bar and mixed: the gradient of @p u at the centre of every cell this
+     * rank holds (owned and ghost) and the coefficients of its kept volume
+     * change, for committed_response(); nothing when no material slot asks
+     * for them.
      */
     void
-    compute_centre_gradients(const TrilinosWrappers::MPI::Vector &u) const;
+    compute_volume_fields(const TrilinosWrappers::MPI::Vector &u) const;
     void
     assemble_volume(const bool assemble_matrix);
     void
@@ -1280,6 +1302,7 @@ namespace StabilizedLagrangian
 
     /** F-bar: ∇u at each cell's centre for the output and the error estimate (by active index) */
     mutable std::vector<Tensor<2, dim>>                          centre_gradients;
+    mutable std::vector<std::array<double, dim + 1>>             kept_volume_coefficients;
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation_storage;
     parallel::DistributedTriangulationBase<dim>                 &triangulation;
     /** simplex meshes: uniform refinements beyond the geometry's (refine_globally) */
