@@ -166,10 +166,10 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    Response<dim>
-    J2Plasticity<dim>::evaluate(const Tensor<2, dim>          &grad_u,
-                                const ArrayView<const double> &old_history,
-                                const ArrayView<double>       &new_history) const
+    Response<3>
+    J2Plasticity<dim>::evaluate_3d(const Tensor<2, 3>            &grad_u,
+                                   const ArrayView<const double> &old_history,
+                                   const ArrayView<double>       &new_history) const
     {
       AssertDimension(old_history.size(), n_history());
       AssertDimension(new_history.size(), n_history());
@@ -178,12 +178,12 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    Response<dim>
-    J2Plasticity<dim>::evaluate_small_strain(const Tensor<2, dim>          &grad_u,
+    Response<3>
+    J2Plasticity<dim>::evaluate_small_strain(const Tensor<2, 3>            &grad_u,
                                              const ArrayView<const double> &old_history,
                                              const ArrayView<double>       &new_history) const
     {
-      const SymmetricTensor<2, 3> strain             = symmetrize(embed_in_3d(grad_u));
+      const SymmetricTensor<2, 3> strain             = symmetrize(grad_u);
       const SymmetricTensor<2, 3> old_plastic_strain = read_tensor(old_history);
       const ReturnMap             map =
           radial_return(strain - old_plastic_strain, old_history[equivalent_plastic_strain_index]);
@@ -191,17 +191,17 @@ namespace StabilizedLagrangian
       write_tensor(old_plastic_strain + map.plastic_strain_increment, new_history);
       new_history[equivalent_plastic_strain_index] = map.equivalent_plastic_strain;
 
-      return response_from_3d<dim>(map.stress, map.tangent, map.stress[2][2]);
+      return Response<3>{map.stress, map.tangent};
     }
 
     template <int dim>
-    Response<dim>
-    J2Plasticity<dim>::evaluate_finite_strain(const Tensor<2, dim>          &grad_u,
+    Response<3>
+    J2Plasticity<dim>::evaluate_finite_strain(const Tensor<2, 3>            &grad_u,
                                               const ArrayView<const double> &old_history,
                                               const ArrayView<double>       &new_history) const
     {
-      const Tensor<2, 3> F     = deformation_gradient(grad_u);
-      const double       det_F = admissible_jacobian(F, "J2 plasticity");
+      const Tensor<2, 3> F = deformation_gradient(grad_u);
+      admissible_jacobian(F, "J2 plasticity");
       const Tensor<2, 3> F_inv = invert(F);
 
       // elastic predictor in logarithmic strain, return map, and update of C_p^{-1}
@@ -251,7 +251,7 @@ namespace StabilizedLagrangian
                 for (unsigned int l = 0; l < 3; ++l)
                   A[i][J][k][L] += spatial_tangent[i][j][k][l] * F_inv[J][j] * F_inv[L][l];
 
-      return response_from_3d<dim>(Tensor<2, 3>(tau) * transpose(F_inv), A, tau[2][2] / det_F);
+      return Response<3>{Tensor<2, 3>(tau) * transpose(F_inv), A};
     }
 
     template class J2Plasticity<2>;

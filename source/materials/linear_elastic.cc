@@ -19,10 +19,10 @@ namespace StabilizedLagrangian
                          std::to_string(nu) + ".");
       lame_lambda    = E * nu / ((1. + nu) * (1. - 2. * nu));
       const double G = E / (2. * (1. + nu));
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          for (unsigned int k = 0; k < dim; ++k)
-            for (unsigned int l = 0; l < dim; ++l)
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int l = 0; l < 3; ++l)
               elasticity[i][j][k][l] = lame_lambda * (i == j) * (k == l) +
                                        G * ((i == k) * (j == l) + (i == l) * (j == k));
     }
@@ -46,17 +46,12 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    Response<dim>
-    LinearElastic<dim>::evaluate(const Tensor<2, dim> &grad_u,
-                                 const ArrayView<const double> &,
-                                 const ArrayView<double> &) const
+    Response<3>
+    LinearElastic<dim>::evaluate_3d(const Tensor<2, 3> &grad_u,
+                                    const ArrayView<const double> &,
+                                    const ArrayView<double> &) const
     {
-      Response<dim> response;
-      response.tangent = elasticity;
-      response.stress  = double_contract<2, 0, 3, 1>(elasticity, grad_u);
-      // plane strain: ε_zz = 0, so σ_zz = λ tr ε
-      response.out_of_plane_stress = (dim == 2) ? lame_lambda * trace(grad_u) : 0.;
-      return response;
+      return Response<3>{double_contract<2, 0, 3, 1>(elasticity, grad_u), elasticity};
     }
 
     template class LinearElastic<2>;

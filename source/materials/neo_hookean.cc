@@ -40,10 +40,10 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    Response<dim>
-    NeoHookean<dim>::evaluate(const Tensor<2, dim> &grad_u,
-                              const ArrayView<const double> &,
-                              const ArrayView<double> &) const
+    Response<3>
+    NeoHookean<dim>::evaluate_3d(const Tensor<2, 3> &grad_u,
+                                 const ArrayView<const double> &,
+                                 const ArrayView<double> &) const
     {
       const Tensor<2, 3> F     = deformation_gradient(grad_u);
       const double       J     = admissible_jacobian(F, "neo-Hookean");
@@ -61,8 +61,7 @@ namespace StabilizedLagrangian
                               (shear_modulus - lame_lambda * log_J) * F_inv[l][i] * F_inv[j][k] +
                               lame_lambda * F_inv[j][i] * F_inv[l][k];
 
-      // σ = J⁻¹ P Fᵀ; with F_3α = 0 and F_33 = 1, σ_33 = P_33 / J = λ ln J / J
-      return response_from_3d<dim>(P, A, P[2][2] / J);
+      return Response<3>{P, A};
     }
 
     template class NeoHookean<2>;

@@ -137,8 +137,10 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_volume_residuals(const TrilinosWrappers::MPI::Vector &u,
                                             Vector<double>                      &squared) const
   {
-    FEValues<dim> fe_values(
-        *fe_u, cell_quadrature, update_gradients | update_hessians | update_JxW_values);
+    FEValues<dim>                    fe_values(*fe_u,
+                            cell_quadrature,
+                            update_gradients | update_hessians | update_JxW_values |
+                                update_inverse_jacobians);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
     std::vector<Tensor<3, dim>>      hessians(cell_quadrature.size());
@@ -150,18 +152,35 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_gradients(u, gradients);
           fe_values[displacement].get_function_hessians(u, hessians);
           const Materials::Interface<dim> &material = material_of(cell);
-          double                           residual = 0.;
+          // mixed on Q2: the kept volume change v̄ = Σ c_a ψ_a varies in the
+          // cell, ψ_a = ξ_(a−1) − ξ_c (a ≥ 1)
+          const bool varying_volume =
+              body_of(cell).modified_volume() && volume_projection(body_of(cell)).n_basis() > 1;
+          double residual = 0.;
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
-              const auto response =
-                  committed_response(cell, q, cell_quadrature.point(q), gradients[q]);
-              // div P = A : ∇∇u (A = ∂P/∂F), no body force
+              Tensor<2, dim> d_kept;
+              const auto     response = committed_response(cell,
+                                                       q,
+                                                       cell_quadrature.point(q),
+                                                       gradients[q],
+                                                       varying_volume ? &d_kept : nullptr);
+              // div P = A : ∇∇u (A = ∂P/∂F) + ∂P/∂v̄ ∇v̄, no body force
               Tensor<1, dim> divergence;
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = 0; j < dim; ++j)
                   for (unsigned int k = 0; k < dim; ++k)
                     for (unsigned int l = 0; l < dim; ++l)
                       divergence[i] += response.tangent[i][j][k][l] * hessians[q][k][l][j];
+              if (varying_volume)
+                {
+                  const auto    &coefficients = kept_volume_coefficients[cell->active_cell_index()];
+                  Tensor<1, dim> grad_kept;
+                  for (unsigned int a = 1; a <= dim; ++a)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      grad_kept[j] += coefficients[a] * fe_values.inverse_jacobian(q)[a - 1][j];
+                  divergence += d_kept * grad_kept;
+                }
               residual += divergence.norm_square() * fe_values.JxW(q);
               energy += scalar_product(response.stress, gradients[q]) * fe_values.JxW(q);
             }

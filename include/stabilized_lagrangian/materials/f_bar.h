@@ -176,12 +176,18 @@ namespace StabilizedLagrangian
      * (VolumeProjection).
      *
      * Finite strain (de Souza Neto, Perić, Dutko, Owen, IJSS 33, 1996): the
-     * model sees F̄ = α F, α = (v̄/J)^(1/d); the weak form ∫ J σ(F̄) : ∇ₓδu dv
-     * reads ∫ P̃ : ∇δu dV with P̃ = α^(1−d) P(F̄). d = dim: in plane strain
-     * F₃₃ = 1 and only the in-plane part carries the volume change.
+     * model sees F̄ = α F, α = (v̄/J)^(1/3), in 3D; the weak form
+     * ∫ J σ(F̄) : ∇ₓδu dv reads ∫ P̃ : ∇δu dV with P̃ = α⁻² P(F̄).
      *
      * Small strain (Hughes, IJNME 15, 1980, B-bar): the model sees
-     * ∇ū = ∇u + (v̄ − tr ∇u)/d I, whose trace is v̄.
+     * ∇ū = ∇u + (v̄ − tr ∇u)/3 I, whose trace is v̄.
+     *
+     * In plane strain both act on the 3D gradient (F₃₃ = 1): F̄₃₃ = α, ε̄₃₃ =
+     * (v̄ − tr ∇u)/3. The isochoric part of F̄ is then that of F, as in the
+     * three-field formulation of Simo, Taylor & Pister, and a point cannot
+     * lose its in-plane area without straining its isochoric part (with the
+     * in-plane α = (v̄/J)^(1/2) an in-plane collapse would cost no isochoric
+     * energy).
      *
      * The derivatives of the weak-form stress with respect to ∇u at the point
      * and to v̄ give the consistent (non-symmetric) tangent.
@@ -193,84 +199,94 @@ namespace StabilizedLagrangian
           : finite(finite)
           , kept(kept_volume_change)
       {
+        modified = embed_in_3d(grad_u);
         if (!finite)
           {
-            modified           = grad_u;
-            const double shift = (kept - trace(grad_u)) / dim;
-            for (unsigned int d = 0; d < dim; ++d)
+            const double shift = (kept - trace(modified)) / 3.;
+            for (unsigned int d = 0; d < 3; ++d)
               modified[d][d] += shift;
             return;
           }
-        F              = unit_symmetric_tensor<dim>() + grad_u;
+        F = modified;
+        for (unsigned int d = 0; d < 3; ++d)
+          F[d][d] += 1.;
         const double J = determinant(F);
         if (!(J > 0.) || !(kept > 0.))
           throw InadmissibleState("Volumetric formulation: det F = " + std::to_string(J) +
                                   " at a quadrature point, " + std::to_string(kept) +
                                   " kept by the cell (must be > 0)");
-        alpha    = std::pow(kept / J, 1. / dim);
-        modified = alpha * F - unit_symmetric_tensor<dim>();
+        alpha    = std::cbrt(kept / J);
+        modified = alpha * F - unit_symmetric_tensor<3>();
       }
 
-      /** @brief The displacement gradient the material sees. */
-      const Tensor<2, dim> &
+      /** @brief The 3D displacement gradient the material sees. */
+      const Tensor<2, 3> &
       modified_gradient() const
       {
         return modified;
       }
 
       /**
-       * @brief From the material's @p response at the modified gradient: the
-       * weak-form stress, and its derivatives with respect to ∇u at the point
-       * (@p d_point) and to the kept volume change v̄ (@p d_kept).
+       * @brief From the material's @p response at the modified gradient
+       * (Interface::evaluate_3d): the weak-form stress and its derivative with
+       * respect to ∇u at the point in @p weak (with the out-of-plane Cauchy
+       * stress σ₃₃(F̄) in plane strain), and its derivative with respect to the
+       * kept volume change v̄ in @p d_kept.
        */
       void
-      weak_form(const Response<dim> &response,
-                Tensor<2, dim>      &stress,
-                Tensor<4, dim>      &d_point,
-                Tensor<2, dim>      &d_kept) const
+      weak_form(const Response<3> &response, Response<dim> &weak, Tensor<2, dim> &d_kept) const
       {
-        const Tensor<4, dim> &A = response.tangent;
+        const Tensor<4, 3> &A = response.tangent;
+        Tensor<2, 3>        stress, by_kept;
+        Tensor<4, 3>        d_point;
         if (!finite)
           {
-            // ∂σ/∂∇u (I − I⊗I/d) at the point, (A : I)/d for v̄
+            // ∂σ/∂∇u (I − I⊗I/3) at the point, (A : I)/3 for v̄
             stress = response.stress;
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = 0; b < dim; ++b)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
                 {
-                  d_kept[a][b] = 0.;
-                  for (unsigned int e = 0; e < dim; ++e)
-                    d_kept[a][b] += A[a][b][e][e] / dim;
-                  for (unsigned int c = 0; c < dim; ++c)
-                    for (unsigned int e = 0; e < dim; ++e)
-                      d_point[a][b][c][e] = A[a][b][c][e] - (c == e ? d_kept[a][b] : 0.);
+                  for (unsigned int e = 0; e < 3; ++e)
+                    by_kept[a][b] += A[a][b][e][e] / 3.;
+                  for (unsigned int c = 0; c < 3; ++c)
+                    for (unsigned int e = 0; e < 3; ++e)
+                      d_point[a][b][c][e] = A[a][b][c][e] - (c == e ? by_kept[a][b] : 0.);
                 }
-            return;
+            weak.out_of_plane_stress = dim == 2 ? response.stress[2][2] : 0.;
           }
-        // P̃ = α^(1−d) P̄ with ∂α/∂F = −α F⁻ᵀ/d, ∂α/∂v̄ = α/(d v̄):
-        // ∂P̃/∂F = α^(2−d) [A − (A:F) ⊗ F⁻ᵀ/d] + (d−1)/d α^(1−d) P̄ ⊗ F⁻ᵀ
-        // ∂P̃/∂v̄ = [α^(2−d) (A:F)/d − (d−1)/d α^(1−d) P̄] / v̄
-        const double         scale_P = std::pow(alpha, 1. - dim);
-        const double         scale_A = std::pow(alpha, 2. - dim);
-        const Tensor<2, dim> F_inv_T = transpose(invert(F));
-        stress                       = scale_P * response.stress;
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            {
-              const double volumetric = scale_A * scalar_product(A[a][b], F) / dim;
-              const double geometric  = (dim - 1.) / dim * scale_P * response.stress[a][b];
-              d_kept[a][b]            = (volumetric - geometric) / kept;
-              for (unsigned int c = 0; c < dim; ++c)
-                for (unsigned int e = 0; e < dim; ++e)
-                  d_point[a][b][c][e] =
-                      scale_A * A[a][b][c][e] + (geometric - volumetric) * F_inv_T[c][e];
-            }
+        else
+          {
+            // P̃ = α⁻² P̄ with ∂α/∂F = −α F⁻ᵀ/3, ∂α/∂v̄ = α/(3 v̄):
+            // ∂P̃/∂F = α⁻¹ [A − (A:F) ⊗ F⁻ᵀ/3] + 2/3 α⁻² P̄ ⊗ F⁻ᵀ
+            // ∂P̃/∂v̄ = [α⁻¹ (A:F)/3 − 2/3 α⁻² P̄] / v̄
+            const double       scale_P = 1. / (alpha * alpha);
+            const double       scale_A = 1. / alpha;
+            const Tensor<2, 3> F_inv_T = transpose(invert(F));
+            stress                     = scale_P * response.stress;
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                {
+                  const double volumetric = scale_A * scalar_product(A[a][b], F) / 3.;
+                  const double geometric  = 2. / 3. * scale_P * response.stress[a][b];
+                  by_kept[a][b]           = (volumetric - geometric) / kept;
+                  for (unsigned int c = 0; c < 3; ++c)
+                    for (unsigned int e = 0; e < 3; ++e)
+                      d_point[a][b][c][e] =
+                          scale_A * A[a][b][c][e] + (geometric - volumetric) * F_inv_T[c][e];
+                }
+            // σ̄ = P̄ F̄ᵀ / det F̄, det F̄ = v̄
+            weak.out_of_plane_stress = dim == 2 ? response.stress[2] * (alpha * F[2]) / kept : 0.;
+          }
+        weak.stress  = in_plane_block<dim>(stress);
+        weak.tangent = in_plane_block<dim>(d_point);
+        d_kept       = in_plane_block<dim>(by_kept);
       }
 
     private:
-      const bool     finite;
-      const double   kept;
-      Tensor<2, dim> F, modified;
-      double         alpha = 1.;
+      const bool   finite;
+      const double kept;
+      Tensor<2, 3> F, modified;
+      double       alpha = 1.;
     };
   } // namespace Materials
 } // namespace StabilizedLagrangian

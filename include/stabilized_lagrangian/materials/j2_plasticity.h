@@ -89,10 +89,10 @@ namespace StabilizedLagrangian
        * Finite strain throws InadmissibleState if J = det F is not a
        * positive number. @p new_history is written on every call.
        */
-      Response<dim>
-      evaluate(const Tensor<2, dim>          &grad_u,
-               const ArrayView<const double> &old_history,
-               const ArrayView<double>       &new_history) const override;
+      Response<3>
+      evaluate_3d(const Tensor<2, 3>            &grad_u,
+                  const ArrayView<const double> &old_history,
+                  const ArrayView<double>       &new_history) const override;
 
       /** @brief Seven: a symmetric tensor (ε_p or C_p^{-1}) and α. */
       unsigned int
@@ -161,15 +161,15 @@ namespace StabilizedLagrangian
       radial_return(const SymmetricTensor<2, 3> &trial_elastic_strain,
                     const double                 old_equivalent_plastic_strain) const;
 
-      /** evaluate() with ε = sym ∇u and the history ε_p, α. */
-      Response<dim>
-      evaluate_small_strain(const Tensor<2, dim>          &grad_u,
+      /** evaluate_3d() with ε = sym ∇u and the history ε_p, α. */
+      Response<3>
+      evaluate_small_strain(const Tensor<2, 3>            &grad_u,
                             const ArrayView<const double> &old_history,
                             const ArrayView<double>       &new_history) const;
 
-      /** evaluate() with F = I + ∇u and the history C_p^{-1}, α. */
-      Response<dim>
-      evaluate_finite_strain(const Tensor<2, dim>          &grad_u,
+      /** evaluate_3d() with F = I + ∇u and the history C_p^{-1}, α. */
+      Response<3>
+      evaluate_finite_strain(const Tensor<2, 3>            &grad_u,
                              const ArrayView<const double> &old_history,
                              const ArrayView<double>       &new_history) const;
 

@@ -27,10 +27,10 @@ namespace StabilizedLagrangian
       static void
       declare_parameters(ParameterHandler &prm);
 
-      Response<dim>
-      evaluate(const Tensor<2, dim>          &grad_u,
-               const ArrayView<const double> &old_history,
-               const ArrayView<double>       &new_history) const override;
+      Response<3>
+      evaluate_3d(const Tensor<2, 3>            &grad_u,
+                  const ArrayView<const double> &old_history,
+                  const ArrayView<double>       &new_history) const override;
 
       bool
       is_finite_strain() const override
@@ -51,10 +51,10 @@ namespace StabilizedLagrangian
       }
 
     private:
-      const double   E;
-      const double   nu;
-      Tensor<4, dim> elasticity;
-      double         lame_lambda;
+      const double E;
+      const double nu;
+      Tensor<4, 3> elasticity;
+      double       lame_lambda;
     };
   } // namespace Materials
 } // namespace StabilizedLagrangian

@@ -6,6 +6,7 @@
 
 #include <stabilized_lagrangian/plugins.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +16,49 @@ namespace StabilizedLagrangian
   namespace Materials
   {
     using namespace dealii;
+
+    /**
+     * @brief Copy of the components of @p t whose indices are all below
+     * min(dim_from, dim_to), the others zero: the plane-strain (dim = 2)
+     * quantities seen in 3D and back.
+     */
+    template <int dim_to, int rank, int dim_from>
+    Tensor<rank, dim_to>
+    common_block(const Tensor<rank, dim_from> &t)
+    {
+      constexpr int        dim = std::min(dim_from, dim_to);
+      Tensor<rank, dim_to> result;
+      for (unsigned int c = 0; c < Tensor<rank, dim>::n_independent_components; ++c)
+        {
+          const TableIndices<rank> indices = Tensor<rank, dim>::unrolled_to_component_indices(c);
+          result[indices]                  = t[indices];
+        }
+      return result;
+    }
+
+    /**
+     * @brief The 3D tensor whose leading dim×dim block is @p t, the other
+     * components zero: the displacement gradient of plane strain (u_3 = 0,
+     * ∂/∂x_3 = 0) seen in 3D.
+     */
+    template <int dim>
+    Tensor<2, 3>
+    embed_in_3d(const Tensor<2, dim> &t)
+    {
+      return common_block<3>(t);
+    }
+
+    /**
+     * @brief The leading dim×dim (×dim×dim) block of a 3D tensor: in plane
+     * strain the in-plane stress, and the tangent with the out-of-plane
+     * components of the displacement gradient held at zero.
+     */
+    template <int dim, int rank>
+    Tensor<rank, dim>
+    in_plane_block(const Tensor<rank, 3> &t)
+    {
+      return common_block<dim>(t);
+    }
 
     /**
      * @brief Response of a material at one quadrature point.
@@ -58,15 +102,55 @@ namespace StabilizedLagrangian
       virtual ~Interface() = default;
 
       /**
-       * @brief Stress, tangent and updated history for a displacement gradient.
+       * @brief Stress, tangent and updated history for a displacement gradient
+       * in 3D (P and ∂P/∂F, or σ and ∂σ/∂∇u in small strain, 3 × 3). In plane
+       * strain evaluate() calls it with the out-of-plane components zero; the
+       * F-bar and mixed formulations call it with their modified gradient,
+       * whose F̄₃₃ differs from 1 (include/stabilized_lagrangian/materials/f_bar.h).
        * @param grad_u displacement gradient ∇u (reference configuration)
        * @param old_history history variables at the start of the load step
        * @param new_history history variables for this state (size n_history())
        */
-      virtual Response<dim>
+      virtual Response<3>
+      evaluate_3d(const Tensor<2, 3>            &grad_u,
+                  const ArrayView<const double> &old_history,
+                  const ArrayView<double>       &new_history) const = 0;
+
+      /**
+       * @brief Stress, tangent and updated history for a displacement gradient
+       * of dimension dim (plane strain in 2D: u₃ = 0, ∂/∂x₃ = 0).
+       */
+      Response<dim>
       evaluate(const Tensor<2, dim>          &grad_u,
                const ArrayView<const double> &old_history,
-               const ArrayView<double>       &new_history) const = 0;
+               const ArrayView<double>       &new_history) const
+      {
+        const Tensor<2, 3> grad_u_3d = embed_in_3d(grad_u);
+        return in_plane_response(grad_u_3d, evaluate_3d(grad_u_3d, old_history, new_history));
+      }
+
+      /**
+       * @brief The in-plane blocks of a 3D @p response at the 3D gradient
+       * @p grad_u, and in plane strain its out-of-plane Cauchy stress.
+       */
+      Response<dim>
+      in_plane_response(const Tensor<2, 3> &grad_u, const Response<3> &response) const
+      {
+        Response<dim> result;
+        result.stress  = in_plane_block<dim>(response.stress);
+        result.tangent = in_plane_block<dim>(response.tangent);
+        if (dim == 2 && !is_finite_strain())
+          result.out_of_plane_stress = response.stress[2][2];
+        else if (dim == 2)
+          {
+            // σ = P Fᵀ / J
+            Tensor<2, 3> F = grad_u;
+            for (unsigned int d = 0; d < 3; ++d)
+              F[d][d] += 1.;
+            result.out_of_plane_stress = response.stress[2] * F[2] / determinant(F);
+          }
+        return result;
+      }
 
       /** @brief Number of history variables per quadrature point (0: none). */
       virtual unsigned int
@@ -169,7 +253,7 @@ namespace StabilizedLagrangian
           Patterns::Selection("displacement|F-bar|mixed"),
           "displacement: the model sees the displacement gradient at each quadrature point. "
           "F-bar: it sees the deformation gradient with its volume change taken at the cell's "
-          "centre, F_bar = (J0/J)^(1/dim) F (de Souza Neto, Peric, Dutko, Owen 1996; in small "
+          "centre, F_bar = (J0/J)^(1/3) F (de Souza Neto, Peric, Dutko, Owen 1996; in small "
           "strain the B-bar of Hughes 1980: the trace of the strain taken at the centre), so that "
           "a cell keeps one volume constraint instead of one per quadrature point: Q1 "
           "quadrilaterals and hexahedra no longer lock when nu -> 0.5 or in plastic flow. "
@@ -177,7 +261,7 @@ namespace StabilizedLagrangian
           "Pister 1985) with pressure and dilatation discontinuous, P0 with Q1 (the mean "
           "dilatation) and with P2 triangles and tetrahedra, P1 with Q2 (Q2/P1disc, inf-sup "
           "stable), condensed cell by cell so the system keeps the size of the displacement one: "
-          "the model sees F_bar = (Pi J / J)^(1/dim) F with Pi J the L2 projection of det F onto "
+          "the model sees F_bar = (Pi J / J)^(1/3) F with Pi J the L2 projection of det F onto "
           "the pressure space (doc/formulation.md, \"Near incompressibility\"). Neither helps "
           "linear triangles and tetrahedra, whose gradient is already constant in the cell: "
           "mixed is refused there.");

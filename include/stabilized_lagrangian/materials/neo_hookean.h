@@ -42,10 +42,10 @@ namespace StabilizedLagrangian
        *
        * Throws InadmissibleState if J = det F is not a positive number.
        */
-      Response<dim>
-      evaluate(const Tensor<2, dim>          &grad_u,
-               const ArrayView<const double> &old_history,
-               const ArrayView<double>       &new_history) const override;
+      Response<3>
+      evaluate_3d(const Tensor<2, 3>            &grad_u,
+                  const ArrayView<const double> &old_history,
+                  const ArrayView<double>       &new_history) const override;
 
       /** @brief True: total Lagrangian finite strain. */
       bool

@@ -987,15 +987,17 @@ namespace StabilizedLagrangian
     }
     /**
      * The response of @p cell's material at its quadrature point @p q (the
-     * history's) or reference point @p unit for @p grad_u, from the committed history (that of the
-     * last converged state); the updated history is discarded. For the output and the error
-     * estimate, never the assembly.
+     * history's) or reference point @p unit for @p grad_u, from the committed
+     * history (that of the last converged state); the updated history is
+     * discarded. With F-bar and mixed, ∂P̃/∂v̄ into @p d_kept when given. For
+     * the output and the error estimate, never the assembly.
      */
     Materials::Response<dim>
     committed_response(const typename Triangulation<dim>::cell_iterator &cell,
                        const unsigned int                                q,
                        const Point<dim>                                 &unit,
-                       const Tensor<2, dim>                             &grad_u) const
+                       const Tensor<2, dim>                             &grad_u,
+                       Tensor<2, dim>                                   *d_kept = nullptr) const
     {
       const auto          history = material_history.committed(cell->active_cell_index(), q);
       std::vector<double> discarded(history.size());
@@ -1016,7 +1018,7 @@ namespace StabilizedLagrangian
                                admissible ? kept : kept_volume_coefficients[index][0],
                                history,
                                make_array_view(discarded),
-                               nullptr);
+                               d_kept);
     }
     /**
      * The response of @p body's model at one quadrature point from the
@@ -1035,12 +1037,12 @@ namespace StabilizedLagrangian
     {
       if (!body.modified_volume())
         return body.model->evaluate(grad_u, committed, trial);
-      const Materials::FBar<dim>     f_bar(grad_u, kept, body.model->is_finite_strain());
-      const Materials::Response<dim> response =
-          body.model->evaluate(f_bar.modified_gradient(), committed, trial);
-      Materials::Response<dim> weak = response;
-      Tensor<2, dim>           unused;
-      f_bar.weak_form(response, weak.stress, weak.tangent, d_kept ? *d_kept : unused);
+      const Materials::FBar<dim> f_bar(grad_u, kept, body.model->is_finite_strain());
+      Materials::Response<dim>   weak;
+      Tensor<2, dim>             unused;
+      f_bar.weak_form(body.model->evaluate_3d(f_bar.modified_gradient(), committed, trial),
+                      weak,
+                      d_kept ? *d_kept : unused);
       return weak;
     }
     /**
