@@ -6,10 +6,10 @@ with Q1/P1 on its 32 x 16 cells the displacement formulation locks (the normal f
 1.5 times that of Q2/P2 on the mesh refined once more), while F-bar gives the Q2/P2 force within
 1 % (the issue's bound), on 1 and 2 MPI ranks (the same force to 1e-8), and the generalized
 Newton reaches the nested loops' force to 1e-6. Mixed with Q2/P1 (Q2/P1disc) on the same cells
-gives it within 1 % too (the same on 2 ranks to 1e-8), and mixed with P2/P1 on the triangles of
+gives it within 1 % too (the same on 2 ranks to 1e-8, and with the generalized Newton to 1e-6), and mixed with P2/P1 on the triangles of
 prm/patin_elastic_triangles.prm within 1 %; mixed with P1/P1 on triangles is refused with a
-message naming P2. The contact patch test between two bodies
-(prm/contact_patch_test.prm, nu = 0.4999, F-bar, 2 ranks) keeps its exact uniform pressure.
+message naming P2. The contact patch test between two bodies (prm/contact_patch_test.prm,
+nu = 0.4999, 2 ranks, Q1/P1 with F-bar and Q2/P1 with mixed) keeps its exact uniform pressure.
 
 Hertz's cylinder (prm/hertz_cylinder.prm, one load step; the closed form holds for any nu) with
 nu = 0.4999 and Q1/P1: the displacement formulation's pressure is off by more than 50 % (L2),
@@ -74,6 +74,11 @@ mixed_2 = normal_force("Q2P1-mixed-2-ranks", patin.replace("set Finite element p
 check(abs(mixed - reference) < 0.01 * reference, f"patin, Q2/P1 mixed: F_n = {mixed:.0f} N, "
       f"{(mixed - reference) / reference:+.2%} from Q2/P2's")
 check(abs(mixed_2 - mixed) < 1e-8 * mixed, f"patin, Q2/P1 mixed on 2 ranks: F_n = {mixed_2:.4f} N")
+mixed_newton = normal_force("Q2P1-mixed-newton", patin.replace("set Finite element pair  = Q1/P1",
+                                                               "set Finite element pair  = Q2/P1")
+                            + formulation("mixed") + sltest.GENERALIZED_NEWTON)
+check(abs(mixed_newton - mixed) < 1e-6 * mixed,
+      f"patin, Q2/P1 mixed, generalized Newton: F_n = {mixed_newton:.4f} N, the nested loops' to 1e-6")
 triangles = sltest.read_prm(os.path.join(root, "prm", "patin_elastic_triangles.prm"))
 for entry in ("set Poisson's ratio = 0.3", "set Finite element pair  = P1/P1"):
     check(entry in triangles, f"prm/patin_elastic_triangles.prm sets '{entry}'")
@@ -95,13 +100,16 @@ check(abs(f_bar_newton - f_bar) < 1e-6 * f_bar,
 # the applied one at every node on the non-matching interface
 patch = sltest.read_prm(os.path.join(root, "prm", "contact_patch_test.prm"))
 check("set Poisson's ratio = 0.3" in patch, "prm/contact_patch_test.prm sets nu = 0.3")
-out = f"{workdir}/patch-F-bar"
-sltest.run(executable, patch.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {NU}")
-           + formulation("F-bar"), out, ranks=2)
-values = [row["contact_pressure_MPa"] for row in sltest.last_profile(out + "/output")]
-error = max(abs(v - 100.) for v in values) / 100.
-check(values and error < 1e-8, f"contact patch test, F-bar, nu = {NU}, 2 ranks: {len(values)} nodes, "
-      f"max |p - 100| / 100 = {error:.1e}")
+check("set Finite element pair  = Q1/P1" in patch, "prm/contact_patch_test.prm sets Q1/P1")
+for pair, name in (("Q1/P1", "F-bar"), ("Q2/P1", "mixed")):
+    out = f"{workdir}/patch-{name}"
+    sltest.run(executable, patch.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {NU}")
+               .replace("set Finite element pair  = Q1/P1", f"set Finite element pair  = {pair}")
+               + formulation(name), out, ranks=2)
+    values = [row["contact_pressure_MPa"] for row in sltest.last_profile(out + "/output")]
+    error = max(abs(v - 100.) for v in values) / 100.
+    check(values and error < 1e-8, f"contact patch test, {pair} {name}, nu = {NU}, 2 ranks: {len(values)} nodes, "
+          f"max |p - 100| / 100 = {error:.1e}")
 
 # --- Hertz ---------------------------------------------------------------------------------
 
