@@ -9,7 +9,9 @@ Newton reaches the nested loops' force to 1e-6. Mixed with Q2/P1 (Q2/P1disc) on 
 gives it within 1 % too (the same on 2 ranks to 1e-8, and with the generalized Newton to 1e-6), and mixed with P2/P1 on the triangles of
 prm/patin_elastic_triangles.prm within 1 %; mixed with P1/P1 on triangles is refused with a
 message naming P2. The contact patch test between two bodies (prm/contact_patch_test.prm,
-nu = 0.4999, 2 ranks, Q1/P1 with F-bar and Q2/P1 with mixed) keeps its exact uniform pressure.
+nu = 0.4999, 2 ranks, Q1/P1 with F-bar and Q2/P1 with mixed) keeps its exact uniform pressure. In
+3D (prm/patin_3d.prm at nu = 0.4999) the displacement formulation locks (more than 3 times F-bar's
+force) and Q1 mixed equals F-bar on its box cells.
 
 Hertz's cylinder (prm/hertz_cylinder.prm, one load step; the closed form holds for any nu) with
 nu = 0.4999 and Q1/P1: the displacement formulation's pressure is off by more than 50 % (L2),
@@ -94,6 +96,20 @@ check(code == 1 and "Material/Volumetric formulation = mixed" in log and "P2/P1"
 f_bar_newton = normal_force("Q1P1-F-bar-newton", patin + formulation("F-bar") + sltest.GENERALIZED_NEWTON)
 check(abs(f_bar_newton - f_bar) < 1e-6 * f_bar,
       f"patin, Q1/P1 F-bar, generalized Newton: F_n = {f_bar_newton:.4f} N, the nested loops' to 1e-6")
+
+# --- the block in 3D -------------------------------------------------------------------------
+# prm/patin_3d.prm (linear elastic, Q1/P1) at nu = 0.4999: the displacement formulation locks; on
+# its box cells the mean of tr grad u of a trilinear field over the 2 x 2 x 2 Gauss points is its
+# centre value, so the mean dilatation (mixed) and B-bar (F-bar) give the same force
+block_3d = sltest.read_prm(os.path.join(root, "prm", "patin_3d.prm"))
+check("set Poisson's ratio = 0.3" in block_3d, "prm/patin_3d.prm sets nu = 0.3")
+block_3d = block_3d.replace("set Poisson's ratio = 0.3", f"set Poisson's ratio = {NU}")
+forces_3d = {name: normal_force(f"3d-{name}", block_3d + formulation(name)) for name in ("displacement", "F-bar", "mixed")}
+check(forces_3d["displacement"] > 3 * forces_3d["F-bar"],
+      f"3D block: the displacement formulation locks, F_n = {forces_3d['displacement']:.4g} N, "
+      f"{forces_3d['displacement'] / forces_3d['F-bar']:.1f} x F-bar's")
+check(abs(forces_3d["mixed"] - forces_3d["F-bar"]) < 1e-8 * forces_3d["F-bar"],
+      f"3D block: Q1 mixed {forces_3d['mixed']:.6g} N = F-bar's {forces_3d['F-bar']:.6g} N to 1e-8")
 
 # --- two bodies: the contact patch test at nu = 0.4999 with F-bar ------------------------------
 # a uniform stress is a homogeneous deformation, which F-bar leaves unchanged: the pressure is
