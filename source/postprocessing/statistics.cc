@@ -43,7 +43,8 @@ namespace StabilizedLagrangian
 
     /** The columns of statistics.csv, in their order (a new statistic is one entry). */
     std::vector<Column<StepRow>>
-    statistics_columns(const unsigned int dim)
+    statistics_columns(const unsigned int                             dim,
+                       const std::vector<dealii::types::boundary_id> &reactions)
     {
       const auto field = [](const std::string &name, const auto member, const int precision = 10) {
         return member_column<StepRow>(name, member, precision);
@@ -76,6 +77,13 @@ namespace StabilizedLagrangian
                            [d](std::ostream &out, const StepRow &row) {
                              out << std::setprecision(10) << row.record.contact_force[d];
                            }});
+      for (unsigned int b = 0; b < reactions.size(); ++b)
+        for (unsigned int d = 0; d < dim; ++d)
+          columns.push_back(
+              {"reaction_boundary_" + std::to_string(reactions[b]) + "_" + "xyz"[d] + "_N",
+               [b, d](std::ostream &out, const StepRow &row) {
+                 out << std::setprecision(10) << row.record.reactions[b][d];
+               }});
       columns.push_back(field("folded_loops", &S::folded_loops));
       columns.push_back(field("adaptive_stops", &S::adaptive_stops));
       columns.push_back(field("friction_law_violations", &S::friction_law_violations));
@@ -135,27 +143,33 @@ namespace StabilizedLagrangian
   } // namespace
 
   void
-  StatisticsWriter::open(const std::string &directory, const unsigned int dim, const bool is_root)
+  StatisticsWriter::open(const std::string                             &directory,
+                         const unsigned int                             dim,
+                         const bool                                     is_root,
+                         const std::vector<dealii::types::boundary_id> &reactions)
   {
-    resume(directory, dim, is_root, State());
+    resume(directory, dim, is_root, reactions, State());
     if (!root)
       return;
-    SafeFiles::write_atomically(statistics_path, header(statistics_columns(dim)));
+    SafeFiles::write_atomically(statistics_path,
+                                header(statistics_columns(dim, reaction_boundaries)));
     SafeFiles::write_atomically(iterations_path, header(iterations_columns()));
   }
 
   void
-  StatisticsWriter::resume(const std::string &directory,
-                           const unsigned int dim,
-                           const bool         is_root,
-                           const State       &state)
+  StatisticsWriter::resume(const std::string                             &directory,
+                           const unsigned int                             dim,
+                           const bool                                     is_root,
+                           const std::vector<dealii::types::boundary_id> &reactions,
+                           const State                                   &state)
   {
-    root              = is_root;
-    dimension         = dim;
-    cumulative_newton = state.cumulative_newton;
-    cumulative_failed = state.cumulative_failed;
-    statistics_path   = directory + "/statistics.csv";
-    iterations_path   = directory + "/iterations.csv";
+    root                = is_root;
+    dimension           = dim;
+    reaction_boundaries = reactions;
+    cumulative_newton   = state.cumulative_newton;
+    cumulative_failed   = state.cumulative_failed;
+    statistics_path     = directory + "/statistics.csv";
+    iterations_path     = directory + "/iterations.csv";
     if (root && state.statistics_bytes > 0)
       {
         SafeFiles::truncate(statistics_path, state.statistics_bytes);
@@ -185,7 +199,8 @@ namespace StabilizedLagrangian
     if (!root)
       return;
     std::ostringstream row;
-    write_line(row, statistics_columns(dimension), StepRow{s, cumulative_newton});
+    write_line(
+        row, statistics_columns(dimension, reaction_boundaries), StepRow{s, cumulative_newton});
     std::ostringstream                 rows;
     const std::vector<Column<LoopRow>> columns = iterations_columns();
     for (const auto &r : s.inner_loops)

@@ -255,6 +255,7 @@ namespace StabilizedLagrangian
       }
     system_rhs                = 0.;
     internal_force            = 0.;
+    contact_residual          = 0.;
     external_force            = 0.;
     multiplier_length_weights = 0.;
     inadmissible_state.clear();
@@ -270,6 +271,7 @@ namespace StabilizedLagrangian
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
+    contact_residual.compress(VectorOperation::add);
     external_force.compress(VectorOperation::add);
     multiplier_length_weights.compress(VectorOperation::add);
     // every rank learns that one of them met an inadmissible state (the
@@ -518,6 +520,7 @@ namespace StabilizedLagrangian
           }
         newton_constraints.distribute_local_to_global(
             local.length_weights, local.dofs, multiplier_length_weights);
+        hanging_constraints.distribute_local_to_global(local.rhs, local.dofs, contact_residual);
         add_to_global_system(local.matrix, local.rhs, local.dofs, assemble_matrix);
       }
   }

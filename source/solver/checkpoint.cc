@@ -468,7 +468,8 @@ namespace StabilizedLagrangian
     if (root && cycles_bytes > 0)
       SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
     output_parameters.directory = cycle_directory(cycle);
-    statistics.resume(output_parameters.directory, dim, root, statistics_state);
+    statistics.resume(
+        output_parameters.directory, dim, root, dirichlet_boundaries(), statistics_state);
     write_pvd();
     output_parameters.directory = base;
   }

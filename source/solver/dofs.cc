@@ -129,6 +129,7 @@ namespace StabilizedLagrangian
     ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
     step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
     internal_force.reinit(locally_owned, mpi_communicator);
+    contact_residual.reinit(locally_owned, mpi_communicator);
     external_force.reinit(locally_owned, mpi_communicator);
     multiplier_length_weights.reinit(locally_owned, mpi_communicator);
     owned_multiplier_components = locally_owned_multiplier_components();

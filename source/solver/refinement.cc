@@ -75,6 +75,49 @@ namespace StabilizedLagrangian
     stats.friction_law_violations =
         check.gather(mpi_communicator, solver_parameters.friction_tolerance);
     stats.friction_law_report = check.report();
+    compute_reactions(stats);
+  }
+
+  template <int dim>
+  std::vector<types::boundary_id>
+  ContactProblem<dim>::dirichlet_boundaries() const
+  {
+    std::vector<types::boundary_id> ids;
+    for (const auto &bc : boundary_conditions.dirichlet)
+      if (std::find(ids.begin(), ids.end(), bc.boundary_id) == ids.end())
+        ids.push_back(bc.boundary_id);
+    return ids;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
+  {
+    const std::vector<types::boundary_id> ids = dirichlet_boundaries();
+    std::vector<Tensor<1, dim>>           reactions(ids.size());
+    IndexSet                              claimed(dof_handler_u.n_dofs());
+    for (const auto &bc : boundary_conditions.dirichlet)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (bc.components[c])
+          {
+            ComponentMask component(dim, false);
+            component.set(c, true);
+            IndexSet dofs =
+                DoFTools::extract_boundary_dofs(dof_handler_u, component, {bc.boundary_id});
+            dofs = dofs & locally_owned_u;
+            dofs.subtract_set(claimed);
+            claimed.add_indices(dofs);
+            const unsigned int b = std::find(ids.begin(), ids.end(), bc.boundary_id) - ids.begin();
+            for (const auto i : dofs)
+              reactions[b][c] += internal_force(i) - external_force(i) + contact_residual(i);
+          }
+    stats.reactions.assign(ids.size(), {{0., 0., 0.}});
+    for (unsigned int b = 0; b < ids.size(); ++b)
+      {
+        const Tensor<1, dim> total = Utilities::MPI::sum(reactions[b], mpi_communicator);
+        for (unsigned int d = 0; d < dim; ++d)
+          stats.reactions[b][d] = total[d];
+      }
   }
 
   template <int dim>
@@ -315,6 +358,8 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                          \
   template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);                   \
+  template std::vector<types::boundary_id> ContactProblem<dim>::dirichlet_boundaries() const;        \
+  template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                      \
   template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
   template void                          ContactProblem<dim>::refine_mesh();                         \
   template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <deal.II/base/types.h>
+
 #include <array>
 #include <string>
 #include <vector>
@@ -49,6 +51,11 @@ namespace StabilizedLagrangian
     double                normal_force             = 0.;
     double                tangential_force         = 0.;
     std::array<double, 3> contact_force            = {{0., 0., 0.}};
+    /**
+     * The force each Dirichlet boundary exerts on the body (N; N/mm in 2D), in
+     * the order of StatisticsWriter's reaction boundaries
+     */
+    std::vector<std::array<double, 3>> reactions;
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
     unsigned int folded_loops = 0;
     /**
@@ -104,17 +111,21 @@ namespace StabilizedLagrangian
      * only); restarts the Newton counts.
      */
     void
-    open(const std::string &directory, const unsigned int dim, const bool is_root);
+    open(const std::string                             &directory,
+         const unsigned int                             dim,
+         const bool                                     is_root,
+         const std::vector<dealii::types::boundary_id> &reaction_boundaries);
 
     /**
      * @brief Continue the files of @p directory from a checkpoint: cut them to the
      * rows it knew of (a killed run may have written more) and restore the counts.
      */
     void
-    resume(const std::string &directory,
-           const unsigned int dim,
-           const bool         is_root,
-           const State       &state);
+    resume(const std::string                             &directory,
+           const unsigned int                             dim,
+           const bool                                     is_root,
+           const std::vector<dealii::types::boundary_id> &reaction_boundaries,
+           const State                                   &state);
 
     /** @brief The state to store in a checkpoint. */
     State
@@ -139,11 +150,13 @@ namespace StabilizedLagrangian
     }
 
   private:
-    bool         root              = false;
-    unsigned int dimension         = 2;
-    unsigned int cumulative_newton = 0;
-    unsigned int cumulative_failed = 0;
-    std::string  statistics_path;
-    std::string  iterations_path;
+    bool         root      = false;
+    unsigned int dimension = 2;
+    /** the Dirichlet boundaries whose reactions the rows show */
+    std::vector<dealii::types::boundary_id> reaction_boundaries;
+    unsigned int                            cumulative_newton = 0;
+    unsigned int                            cumulative_failed = 0;
+    std::string                             statistics_path;
+    std::string                             iterations_path;
   };
 } // namespace StabilizedLagrangian

@@ -1097,6 +1097,17 @@ namespace StabilizedLagrangian
     /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
+    /** The boundary ids with a Dirichlet condition, each once, in the order of the slots. */
+    std::vector<types::boundary_id>
+    dirichlet_boundaries() const;
+    /**
+     * The reaction of each Dirichlet boundary of the converged state (the sum
+     * over its constrained DoFs of the residual without constraints: internal
+     * minus applied forces plus the contact terms), into stats.reactions. A
+     * DoF on two such boundaries counts for the first.
+     */
+    void
+    compute_reactions(StepStatistics &stats) const;
     /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
     TrilinosWrappers::MPI::Vector
     ghosted_displacement() const;
@@ -1336,6 +1347,8 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector residual_scaling;        ///< 1, r_n or r_t per owned row
     /** owned: the nodal internal forces ∫σ:∇φ_i of the last assembly (reactions included) */
     TrilinosWrappers::MPI::Vector internal_force;
+    /** the contact terms of the residual, without constraints (for the reactions) */
+    TrilinosWrappers::MPI::Vector contact_residual;
     /** owned: the nodal external (Neumann) forces of the last assembly */
     TrilinosWrappers::MPI::Vector external_force;
     /**
