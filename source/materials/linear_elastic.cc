@@ -17,8 +17,8 @@ namespace StabilizedLagrangian
       if (!(nu >= 0. && nu < 0.5))
         throw InputError("Material/linear elastic/Poisson's ratio must be in [0, 0.5), got " +
                          std::to_string(nu) + ".");
-      lame_lambda    = E * nu / ((1. + nu) * (1. - 2. * nu));
-      const double G = E / (2. * (1. + nu));
+      const double lame_lambda = E * nu / ((1. + nu) * (1. - 2. * nu));
+      const double G           = E / (2. * (1. + nu));
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
           for (unsigned int k = 0; k < 3; ++k)

@@ -303,6 +303,7 @@ namespace StabilizedLagrangian
     for (unsigned int i = 0; i < n_dofs; ++i)
       component[i] = fe.system_to_component_index(i).first;
     std::vector<Tensor<2, dim>> tangent_times_grad(n_dofs);
+    std::vector<Tensor<2, dim>> sample_gradients; // F-bar and mixed
 
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -328,7 +329,7 @@ namespace StabilizedLagrangian
                 }
               else
                 samples = &fe_values;
-              std::vector<Tensor<2, dim>> sample_gradients(samples->n_quadrature_points);
+              sample_gradients.assign(samples->n_quadrature_points, Tensor<2, dim>());
               for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
                 for (unsigned int i = 0; i < n_dofs; ++i)
                   sample_gradients[k][component[i]] += coefficients[i] * samples->shape_grad(i, k);

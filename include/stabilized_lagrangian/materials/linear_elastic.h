@@ -54,7 +54,6 @@ namespace StabilizedLagrangian
       const double E;
       const double nu;
       Tensor<4, 3> elasticity;
-      double       lame_lambda;
     };
   } // namespace Materials
 } // namespace StabilizedLagrangian
