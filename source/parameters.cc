@@ -84,6 +84,19 @@ namespace StabilizedLagrangian
           "Quadrature on Γc; the contact and stick/slip statuses live at its "
           "points. Gauss-Lobatto (degree max(k, m) + 1 points per direction) puts them "
           "at the multiplier nodes when m >= k.");
+      prm.declare_entry(
+          "Complementarity",
+          "pointwise",
+          Patterns::Selection("pointwise|weighted"),
+          "Where the contact and friction conditions hold. pointwise: at every contact "
+          "integration point, on lambda_n - r_n g_n (the seed's formulation; its discrete "
+          "solution depends on r_n where the multiplier nodes are not the integration points, "
+          "e.g. on non-matching meshes). weighted: once per multiplier node j on the weighted "
+          "gap and slip, g_j = int psi_j g_n / int psi_j and likewise the slip increment "
+          "(mortar conditions): lambda_j >= 0, g_j >= 0, lambda_j g_j = 0 and Coulomb's law per "
+          "node, whose discrete solution does not depend on r_n or r_t; the displacement sees "
+          "the multiplier field itself. Needs every multiplier node of the contact surface "
+          "free (no hanging node on it, no multiplier on a coarser mesh).");
       prm.declare_entry("Check inf-sup",
                         "false",
                         Patterns::Bool(),
@@ -148,10 +161,12 @@ namespace StabilizedLagrangian
       };
       parse_parameter("r_n", "N/mm^3", r_n, r_n_automatic, r_n_factor);
       parse_parameter("r_t", "1/mm", r_t, r_t_automatic, r_t_factor);
-      fe_pair       = prm.get("Finite element pair");
-      check_inf_sup = prm.get_bool("Check inf-sup");
-      quadrature    = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
-                                                               : ContactQuadrature::gauss_lobatto;
+      fe_pair         = prm.get("Finite element pair");
+      check_inf_sup   = prm.get_bool("Check inf-sup");
+      quadrature      = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
+                                                                 : ContactQuadrature::gauss_lobatto;
+      complementarity = prm.get("Complementarity") == "weighted" ? Complementarity::weighted
+                                                                 : Complementarity::pointwise;
       prm.leave_subsection();
     }
 

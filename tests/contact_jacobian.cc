@@ -8,6 +8,9 @@
 // (linear elastic) and F-bar (neo-Hookean), whose tangent also runs through the
 // gradient at each cell's centre, and the condensed three-field formulation
 // (Q1/P0, Q2/P1disc), whose tangent runs through every quadrature point's.
+// Last `Complementarity = weighted`, frozen and folded: the nodal conditions
+// on the weighted gap and slip, whose Λ rows are nonlinear in the slip of the
+// node's whole support.
 
 #include <deal.II/base/mpi.h>
 
@@ -186,6 +189,13 @@ end
     if (state == State::mixed && !generalized)
       for (unsigned int p = 0; p < problem.contact_points().size(); p += 3)
         problem.contact_points()[p].in_contact = false;
+    // (weighted: the statuses and thresholds of the nodes, the same pattern)
+    if (!generalized)
+      problem.freeze_nodal_conditions(
+          [state](const unsigned int k) {
+            return state != State::open && !(state == State::mixed && k % 3 == 0);
+          },
+          5.);
 
     problem.assemble_newton_system(true);
     unsigned int in_contact = 0;
@@ -272,16 +282,21 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  for (const std::string quadrature : {"Gauss-Lobatto", "Gauss"})
-    for (const State state : {State::open, State::stick, State::slip, State::mixed})
-      for (const double mu : {0.3, 0.})
-        for (const bool generalized : {false, true})
-          {
-            if (generalized && state != State::stick && state != State::slip)
-              continue;
-            test<2>(state, quadrature, mu, generalized);
-            test<3>(state, quadrature, mu, generalized);
-          }
+  // every state, law, quadrature and algorithm, with the pointwise and the
+  // weighted conditions
+  const std::string weighted = "subsection Contact\n  set Complementarity = weighted\nend\n";
+  for (const std::string &conditions : {std::string(), weighted})
+    for (const std::string quadrature : {"Gauss-Lobatto", "Gauss"})
+      for (const State state : {State::open, State::stick, State::slip, State::mixed})
+        for (const double mu : {0.3, 0.})
+          for (const bool generalized : {false, true})
+            {
+              if (generalized && state != State::stick && state != State::slip)
+                continue;
+              const std::string label = conditions.empty() ? "" : "weighted ";
+              test<2>(state, quadrature, mu, generalized, conditions, 1e-3, label);
+              test<3>(state, quadrature, mu, generalized, conditions, 1e-3, label);
+            }
   // F-bar's tangent (through the cell centre's gradient) and the mixed one
   // (through the projection from every quadrature point), with displacements
   // of 5 % of the cell size so that the finite-strain terms count

@@ -21,7 +21,9 @@ the master body receives the contact forces consistently.
 Checked for the pair Q1/P1 and Q2/P1, with the slave on the finer side
 (upper_bottom, the scene) and with the roles swapped (slave lower_top, the
 coarser side), on 1 and 2 MPI ranks; and on the same blocks meshed with
-triangles (the same interface nodes) for P1/P1, P2/P1 and P2/P2."""
+triangles (the same interface nodes) for P1/P1, P2/P1 and P2/P2. Then the same
+with `Complementarity = weighted` (the conditions per node on the weighted
+gap), which must pass it as well."""
 import base64
 import glob
 import os
@@ -78,6 +80,11 @@ cases = [("Q1/P1", "upper_bottom", 1), ("Q1/P1", "lower_top", 1),
          ("Q1/P1", "upper_bottom", 2), ("Q1/P1", "lower_top", 2),
          ("P1/P1", "upper_bottom", 1), ("P1/P1", "lower_top", 1), ("P1/P1", "upper_bottom", 2),
          ("P2/P1", "upper_bottom", 1), ("P2/P2", "lower_top", 2)]
+cases = [case + ("pointwise",) for case in cases] + [
+    ("Q1/P1", "upper_bottom", 1, "weighted"), ("Q1/P1", "lower_top", 2, "weighted"),
+    ("Q2/P1", "upper_bottom", 2, "weighted"), ("Q2/P2", "lower_top", 1, "weighted"),
+    ("P1/P1", "upper_bottom", 2, "weighted"), ("P2/P2", "lower_top", 1, "weighted")]
+WEIGHTED = "\nsubsection Contact\n  set Complementarity = weighted\nend\n"
 # the P pairs on the same blocks meshed with triangles (Recombine removed: the same
 # interface nodes, non-matching)
 quadrilateral_geo = os.path.join(prm_dir, "meshes", "contact_patch.geo")
@@ -85,7 +92,7 @@ triangle_geo = os.path.join(workdir, "contact_patch_triangles.geo")
 os.makedirs(workdir, exist_ok=True)
 with open(quadrilateral_geo) as f, open(triangle_geo, "w") as out_geo:
     out_geo.write(re.sub(r"Recombine Surface\{\d+\};", "", f.read()))
-for pair, slave, ranks in cases:
+for pair, slave, ranks, mode in cases:
     cells = 10 if slave == "upper_bottom" else 8
     nodes = cells + 1 if pair[1] == "1" else 2 * cells + 1
     text = (scene if slave == "upper_bottom" else swapped_scene).replace(PAIR, f"set Finite element pair  = {pair}")
@@ -93,8 +100,10 @@ for pair, slave, ranks in cases:
         text = text.replace(quadrilateral_geo, triangle_geo)
         if triangle_geo not in text:
             raise SystemExit("FAIL: the scene does not name prm/meshes/contact_patch.geo by its path")
-    name = f"{pair}, slave {slave}, {ranks} rank(s)"
-    out = os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}")
+    name = f"{pair}, slave {slave}, {ranks} rank(s), {mode}"
+    out = os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}-{mode}")
+    if mode == "weighted":
+        text += WEIGHTED
     code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT + VTU, out, ranks=ranks, expect_success=False)
     check(code == 0, f"{name}: exit code {code}")
     if code != 0:

@@ -34,6 +34,16 @@ namespace StabilizedLagrangian
     };
 
     /**
+     * @brief Where the contact and friction conditions hold
+     * (doc/formulation.md, "Weighted complementarity").
+     */
+    enum class Complementarity
+    {
+      pointwise, ///< at each contact integration point (the seed's formulation)
+      weighted   ///< per multiplier node on the weighted gap ∫ψ_j g_n (mortar)
+    };
+
+    /**
      * @brief A boundary given in the prm: its id if @p entry is a number,
      * nothing if it is a name (resolved once the mesh is known); InputError
      * naming the entry @p name if the id is out of range.
@@ -57,7 +67,8 @@ namespace StabilizedLagrangian
       double                       r_t_factor    = 1.;
       std::string                  fe_pair;
       bool check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
-      ContactQuadrature quadrature = ContactQuadrature::gauss_lobatto;
+      ContactQuadrature quadrature      = ContactQuadrature::gauss_lobatto;
+      Complementarity   complementarity = Complementarity::pointwise;
 
       static void
       declare_parameters(ParameterHandler  &prm,

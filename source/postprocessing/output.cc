@@ -203,14 +203,15 @@ namespace StabilizedLagrangian
 
   template <int dim>
   std::vector<double>
-  ContactProblem<dim>::contact_field_values(const std::vector<ContactField> &fields,
-                                            ContactKinematics<dim>           k) const
+  ContactProblem<dim>::contact_field_values(const std::vector<ContactField>       &fields,
+                                            ContactKinematics<dim>                 k,
+                                            const Contact::PointResponse<dim - 1> *node) const
   {
     // the state of the converged iterate, evaluated afresh at the point
     ContactPointState<dim> state;
     evaluate_point_state(state, k, PointRefresh{true, true, true});
     const double        gap   = state.pairing.gap(k.position);
-    const auto          point = point_response(state, k);
+    const auto          point = node ? *node : point_response(state, k);
     std::vector<double> values;
     for (const auto &field : fields)
       field.evaluate({state, k, point, gap}, values);
@@ -241,18 +242,21 @@ namespace StabilizedLagrangian
             ? 1u
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
     FaceEvaluator evaluator(*this, node_quadrature, false);
+    FaceNodes     nodes;
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
+        if (weighted_complementarity())
+          face_node_responses(evaluator, nodes);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
             &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
         const auto   vertex_face = field_cell->face(face.face_no);
         const double tolerance   = 1e-10 * vertex_face->diameter();
         for (unsigned int q = 0; q < node_quadrature.size(); ++q)
           {
-            const Point<dim>         &X = evaluator.u_values->quadrature_point(q);
-            const std::vector<double> values =
-                contact_field_values(fields, evaluator.kinematics(q));
+            const Point<dim>         &X      = evaluator.u_values->quadrature_point(q);
+            const std::vector<double> values = contact_field_values(
+                fields, evaluator.kinematics(q), nearest_node(evaluator, nodes, q));
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
             profile.insert(profile.end(), values.begin(), values.end());

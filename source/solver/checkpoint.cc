@@ -222,6 +222,7 @@ namespace StabilizedLagrangian
       owned.push_back(solution(index));
     out.put(owned);
     out.put(contact_states);
+    out.put(owned_nodal_states());
     out.put(active_set);
     out.put(material_history.committed_data());
     out.put(statistics.state());
@@ -426,6 +427,9 @@ namespace StabilizedLagrangian
     AssertThrow(states.size() == contact_states.size(),
                 ExcMessage("the checkpoint's contact points do not fit this mesh"));
     contact_states = states;
+    std::vector<double> nodal_states;
+    in.get(nodal_states);
+    restore_nodal_states(nodal_states);
     in.get(active_set);
     std::vector<double> history;
     in.get(history);

@@ -31,6 +31,7 @@ namespace StabilizedLagrangian
     if (!friction_law->threshold_depends_on_pressure())
       for (auto &state : contact_states)
         state.friction_threshold = friction_law->threshold(0.);
+    setup_nodal_conditions();
 
     // initial statuses from the initial configuration: touching points are in contact
     sparsity_ready = false;

@@ -234,6 +234,7 @@ namespace StabilizedLagrangian
   {
     solution       = problem.solution;
     contact_states = problem.contact_states;
+    nodal          = problem.nodal;
     contact_faces  = problem.contact_faces;
     time           = problem.time;
   }
@@ -244,6 +245,7 @@ namespace StabilizedLagrangian
   {
     problem.solution       = solution;
     problem.contact_states = contact_states;
+    problem.nodal          = nodal;
     problem.contact_faces  = contact_faces;
     problem.time           = time;
     problem.update_ghosts();

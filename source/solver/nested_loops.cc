@@ -203,9 +203,13 @@ namespace StabilizedLagrangian
   std::vector<unsigned char>
   ContactProblem<dim>::contact_statuses() const
   {
-    std::vector<unsigned char> statuses(contact_states.size());
-    for (unsigned int p = 0; p < contact_states.size(); ++p)
-      statuses[p] = contact_states[p].in_contact;
+    std::vector<unsigned char> statuses;
+    if (weighted_complementarity())
+      for (const auto &node : nodal.owned_nodes)
+        statuses.push_back(nodal.status(node.first) > 0.5);
+    else
+      for (const auto &state : contact_states)
+        statuses.push_back(state.in_contact);
     return statuses;
   }
 
@@ -227,8 +231,10 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::update_statuses()
   {
     TimerOutput::Scope scope(timer, "contact search");
-    unsigned int       changes = 0;
-    PointRefresh       what;
+    if (weighted_complementarity())
+      return update_nodal_statuses();
+    unsigned int changes = 0;
+    PointRefresh what;
     what.status = true;
     refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
       changes += before.in_contact != state.in_contact;
@@ -241,8 +247,10 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::update_friction_thresholds()
   {
     TimerOutput::Scope scope(timer, "contact search");
-    double             max_change = 0., max_threshold = 0.;
-    PointRefresh       what;
+    if (weighted_complementarity())
+      return update_nodal_thresholds();
+    double       max_change = 0., max_threshold = 0.;
+    PointRefresh what;
     what.threshold = true;
     refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
       const double s = state.friction_threshold;

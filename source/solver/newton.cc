@@ -16,6 +16,8 @@ namespace StabilizedLagrangian
   std::vector<unsigned char>
   ContactProblem<dim>::point_statuses()
   {
+    if (weighted_complementarity())
+      return nodal_statuses();
     std::vector<unsigned char> statuses;
     statuses.reserve(contact_states.size());
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {

@@ -45,6 +45,15 @@ namespace StabilizedLagrangian
       if (multiplier_length_weights(row) > 0.)
         check.add_multiplier_row(component == 0,
                                  std::abs(system_rhs(row)) / multiplier_length_weights(row));
+    if (weighted_complementarity())
+      {
+        weighted_contact_statistics(stats, check);
+        stats.friction_law_violations =
+            check.gather(mpi_communicator, solver_parameters.friction_tolerance);
+        stats.friction_law_report = check.report();
+        compute_reactions(stats);
+        return;
+      }
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       const auto point = point_response(state, k);
       ++counts[0];

@@ -247,6 +247,50 @@ namespace StabilizedLagrangian
         return -(chi_f * (s / r_t) * (identity - d_projected) + (1. - chi_f) * identity);
       }
 
+      /** @brief λ_n. */
+      double
+      pressure() const
+      {
+        return lambda;
+      }
+
+      /**
+       * @brief The residual of the λ_n equation with the status of this point
+       * and the gap @p gap of another: −[(1−χ) λ_n / r_n + χ g]. With weighted
+       * complementarity a node's status and λ_n hold on its whole support,
+       * where each integration point brings its own gap.
+       */
+      double
+      pressure_residual_at(const double gap) const
+      {
+        return -((1. - chi) * lambda / r_n + chi * gap);
+      }
+
+      /**
+       * @brief The tangential traction of the multiplier itself, −χ_f s Λ:
+       * at a converged node Λ = P_B(ĝ), so it is tangential_traction(); the
+       * weighted formulation lets the displacement see it (linear in Λ).
+       */
+      Tensor<1, n>
+      multiplier_traction() const
+      {
+        return -chi_f * s * semi;
+      }
+
+      /** @brief ∂(multiplier_traction())/∂λ_n, −χ_f (ds/dλ_n) Λ; zero with s frozen. */
+      Tensor<1, n>
+      multiplier_traction_pressure_derivative() const
+      {
+        return -chi_f * ds * semi;
+      }
+
+      /** @brief χ_f s: −∂(multiplier_traction())/∂Λ per component. */
+      double
+      friction_factor() const
+      {
+        return chi_f * s;
+      }
+
       /** @brief Open, stick (friction active, |ĝ| ≤ 1) or slip (frictionless contact slips). */
       Status
       status() const

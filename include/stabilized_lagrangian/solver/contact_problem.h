@@ -22,6 +22,7 @@
 
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
+#include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
@@ -240,6 +241,15 @@ namespace StabilizedLagrangian
       return contact_states;
     }
 
+    /**
+     * @brief With `Complementarity = weighted`, freeze the status of the k-th
+     * owned multiplier node to @p in_contact(k) and every threshold to
+     * @p threshold; for tests. Returns the number of owned nodes.
+     */
+    unsigned int
+    freeze_nodal_conditions(const std::function<bool(unsigned int)> &in_contact,
+                            const double                             threshold);
+
     /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row
      * (dofs.cc). */
     std::vector<std::pair<types::global_dof_index, unsigned int>>
@@ -344,6 +354,79 @@ namespace StabilizedLagrangian
       std::vector<double>         m_coefficients;
     };
 
+    // --- weighted_contact.cc: `Contact/Complementarity = weighted` ---
+    /**
+     * The nodal conditions (doc/formulation.md, "Weighted complementarity"):
+     * ghosted vectors in the solution's layout, set on the multiplier DoFs.
+     */
+    struct NodalConditions
+    {
+      TrilinosWrappers::MPI::Vector weights; ///< D_j = ∫ψ_j at every multiplier DoF
+      TrilinosWrappers::MPI::Vector integrals; ///< ∫ψ_j g_n at λ_n DoFs, ∫ψ_j Δs_α at Λ_α DoFs
+      TrilinosWrappers::MPI::Vector status;     ///< χ_j, 1 or 0, at the λ_n DoFs (status loop)
+      TrilinosWrappers::MPI::Vector thresholds; ///< s_j at the λ_n DoFs (friction loop)
+      /** the owned nodes: the λ_n DoF, and the Λ DoFs of the same node */
+      std::vector<std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
+          owned_nodes;
+    };
+    /** The responses of the nodes of one face's multipliers. */
+    struct FaceNodes
+    {
+      std::vector<Contact::PointResponse<dim - 1>> responses;
+      /** per multiplier of the face (FaceEvaluator::m_dofs), its node's response */
+      std::vector<const Contact::PointResponse<dim - 1> *> of_multiplier;
+    };
+    bool
+    weighted_complementarity() const
+    {
+      return contact_parameters.complementarity == Parameters::Complementarity::weighted;
+    }
+    /** Size the nodal vectors, find the owned nodes; refuse constrained multipliers. */
+    void
+    setup_nodal_conditions();
+    /** D_j, ∫ψ_j g_n and ∫ψ_j Δs at the iterate (the pairing refreshed with @p pairing). */
+    void
+    update_nodal_integrals(const bool pairing);
+    /** The status χ_j of every node at the iterate; returns how many changed. */
+    unsigned int
+    update_nodal_statuses();
+    /** The threshold s_j of every node; returns the largest change against the largest s_j. */
+    double
+    update_nodal_thresholds();
+    /** Before an assembly: the integrals, and what the generalized Newton folds (@p refresh). */
+    void
+    prepare_nodal_conditions(const PointRefresh &refresh);
+    /** The stabilized Lagrangian of a node on its weighted gap and slip, with its χ_j and s_j. */
+    Contact::PointResponse<dim - 1>
+    nodal_response(const types::global_dof_index               node,
+                   const std::vector<types::global_dof_index> &semi_dofs) const;
+    /** The responses of the nodes of the face @p evaluator was last set to. */
+    void
+    face_node_responses(const FaceEvaluator &evaluator, FaceNodes &nodes) const;
+    /**
+     * The response of the node with the largest ψ_j at point @p q of the face
+     * @p nodes were computed for; null without weighted complementarity.
+     */
+    /** The index in FaceEvaluator::m_dofs of the λ_n with the largest ψ_j at point @p q. */
+    unsigned int
+    nearest_multiplier(const FaceEvaluator &evaluator, unsigned int q) const;
+    const Contact::PointResponse<dim - 1> *
+    nearest_node(const FaceEvaluator &evaluator, const FaceNodes &nodes, unsigned int q) const;
+    /** Each contact point takes the status and threshold of its nearest node. */
+    void
+    copy_nodal_states_to_points();
+    /** Open, stick or slip of the owned nodes (the active-set watch, the status cycles). */
+    std::vector<unsigned char>
+    nodal_statuses() const;
+    /** compute_contact_statistics() per node, the forces of the multiplier field. */
+    void
+    weighted_contact_statistics(StepStatistics &stats, Contact::FrictionLawCheck<dim> &check);
+    /** χ_j and s_j of the owned nodes, for a checkpoint; and back. */
+    std::vector<double>
+    owned_nodal_states() const;
+    void
+    restore_nodal_states(const std::vector<double> &values);
+
     // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
     /** What the refinement cycles took in all (an accuracy target reports it). */
     struct CycleTotals
@@ -389,6 +472,7 @@ namespace StabilizedLagrangian
     {
       TrilinosWrappers::MPI::Vector       solution;
       std::vector<ContactPointState<dim>> contact_states;
+      NodalConditions                     nodal;
       std::vector<ContactFace>            contact_faces;
       double                              time = 0.;
       /** Copy the state of @p problem. */
@@ -855,6 +939,20 @@ namespace StabilizedLagrangian
     void
     for_each_contact_multiplier_dof(const Function &f) const
     {
+      for_each_contact_multiplier_face(
+          [&](const std::vector<types::global_dof_index> &dofs, const unsigned int face) {
+            for (const unsigned int i : multiplier_face_dofs(face))
+              f(dofs[i], i);
+          });
+    }
+    /**
+     * Call f(dofs, face) for each contact face of the non-artificial cells,
+     * with the multiplier DoFs of its cell (multiplier numbering).
+     */
+    template <typename Function>
+    void
+    for_each_contact_multiplier_face(const Function &f) const
+    {
       std::vector<types::global_dof_index> dofs(fe_m->n_dofs_per_cell());
       for (const auto &cell : dof_handler_m.active_cell_iterators())
         if (!cell->is_artificial())
@@ -862,8 +960,7 @@ namespace StabilizedLagrangian
             if (is_contact_face(cell, face))
               {
                 cell->get_dof_indices(dofs);
-                for (const unsigned int i : multiplier_face_dofs(face))
-                  f(dofs[i], i);
+                f(dofs, face);
               }
     }
     /** The multiplier element's DoFs on face @p face of a cell, ascending (setup_dofs()). */
@@ -1229,9 +1326,15 @@ namespace StabilizedLagrangian
     /** The contact output fields, in the order of the VTU's and the profile's. */
     static std::vector<ContactField>
     contact_fields();
-    /** The values of @p fields at a point of Γc, from the converged iterate evaluated afresh. */
+    /**
+     * The values of @p fields at a point of Γc, from the converged iterate
+     * evaluated afresh; with weighted complementarity, the tractions and status
+     * of the point's nearest node, @p node.
+     */
     std::vector<double>
-    contact_field_values(const std::vector<ContactField> &fields, ContactKinematics<dim> k) const;
+    contact_field_values(const std::vector<ContactField>       &fields,
+                         ContactKinematics<dim>                 k,
+                         const Contact::PointResponse<dim - 1> *node = nullptr) const;
     /**
      * Evaluate @p fields at the nodes of Γc: averaged at the vertices into
      * @p vertex_values (a Q1 field of @p field_dofs), each node's reference
@@ -1382,6 +1485,8 @@ namespace StabilizedLagrangian
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
+    /** `Contact/Complementarity = weighted`: the conditions per multiplier node */
+    NodalConditions nodal;
 
     double time = 0.;
     /** reference positions of the points in contact at the end of some step on this mesh */
