@@ -23,7 +23,10 @@ Checked for the pair Q1/P1 and Q2/P1, with the slave on the finer side
 coarser side), on 1 and 2 MPI ranks; and on the same blocks meshed with
 triangles (the same interface nodes) for P1/P1, P2/P1 and P2/P2. Then the same
 with `Complementarity = weighted` (the conditions per node on the weighted
-gap), which must pass it as well."""
+gap), which must pass it as well. Last the 3D patch test
+(prm/contact_patch_test_3d.prm, hexahedra, 8 x 6 graded faces against 10 x 10):
+the slave faces cut along the projected master faces, Q1/P1, Q2/P1 and Q2/P2,
+both roles, 1 and 2 ranks, weighted and pointwise; sigma_zz = -p in every cell."""
 import base64
 import glob
 import os
@@ -92,23 +95,15 @@ triangle_geo = os.path.join(workdir, "contact_patch_triangles.geo")
 os.makedirs(workdir, exist_ok=True)
 with open(quadrilateral_geo) as f, open(triangle_geo, "w") as out_geo:
     out_geo.write(re.sub(r"Recombine Surface\{\d+\};", "", f.read()))
-for pair, slave, ranks, mode in cases:
-    cells = 10 if slave == "upper_bottom" else 8
-    nodes = cells + 1 if pair[1] == "1" else 2 * cells + 1
-    text = (scene if slave == "upper_bottom" else swapped_scene).replace(PAIR, f"set Finite element pair  = {pair}")
-    if pair.startswith("P"):
-        text = text.replace(quadrilateral_geo, triangle_geo)
-        if triangle_geo not in text:
-            raise SystemExit("FAIL: the scene does not name prm/meshes/contact_patch.geo by its path")
-    name = f"{pair}, slave {slave}, {ranks} rank(s), {mode}"
-    out = os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}-{mode}")
-    if mode == "weighted":
-        text += WEIGHTED
+def check_case(name, text, out, ranks, nodes, dim, measure):
+    """Run one patch test and check it: every node of the slave in contact with
+    the pressure p, the normal force p times the interface's measure, and the
+    uniform stress sigma = -p e_n e_n (n the last axis) in every cell."""
     code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT + VTU, out, ranks=ranks, expect_success=False)
     check(code == 0, f"{name}: exit code {code}")
     if code != 0:
         print(log[-3000:])
-        continue
+        return
     profile = sltest.last_profile(os.path.join(out, "output"))
     check(len(profile) == nodes, f"{name}: {len(profile)} profile nodes, the slave has {nodes}")
     open_nodes = [row["x_mm"] for row in profile if row["status"] == 0]
@@ -119,10 +114,10 @@ for pair, slave, ranks, mode in cases:
           f"(worst at x = {worst['x_mm']:.3f}: {worst['contact_pressure_MPa']:.10g} MPa)")
     last = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]
     force = last["normal_force_N"]
-    force_error = abs(force - pressure * length) / (pressure * length)
-    check(force_error < tolerance, f"{name}: normal force {force:.8f} N/mm = p L, "
-          f"relative error {force_error:.2e}")
-    # every cell of both blocks: sigma_yy = -p, sigma_xx = sigma_xy = 0; the
+    force_error = abs(force - pressure * measure) / (pressure * measure)
+    check(force_error < tolerance, f"{name}: normal force {force:.8f} N{'/mm' if dim == 2 else ''} = p "
+          f"{'L' if dim == 2 else 'A'}, relative error {force_error:.2e}")
+    # every cell of both blocks: sigma_nn = -p, the other components 0; the
     # stress is written in single precision (relative rounding 6e-8), so the
     # bound is 1e-6 p, above the rounding and the solver tolerance
     files = glob.glob(os.path.join(out, "output", f"solution_{int(last['step']):05d}.*.vtu"))
@@ -131,10 +126,48 @@ for pair, slave, ranks, mode in cases:
         arrays = vtu_point_arrays(path)
         points += arrays["points"][1]
         stress += arrays["stress"][1]
-    ys = points[1::3]
-    check(ys and min(ys) < 0 < max(ys), f"{name}: the .vtu output ({len(files)} file(s)) covers both blocks")
-    deviation = max([abs(sxx) for sxx in stress[0::9]] + [abs(sxy) for sxy in stress[1::9]] +
-                    [abs(syy + pressure) for syy in stress[4::9]] or [float("inf")]) / pressure
-    check(deviation < 1e-6, f"{name}: uniform stress sigma_yy = -p in both blocks, max deviation "
-          f"{deviation:.1e} p over {len(ys)} output points")
+    normal = points[dim - 1::3]
+    check(normal and min(normal) < 0 < max(normal),
+          f"{name}: the .vtu output ({len(files)} file(s)) covers both blocks")
+    nn = 4 * (dim - 1)  # sigma_yy (2D) or sigma_zz (3D) among the 3 x 3 components
+    zero = (0, 1) if dim == 2 else (0, 1, 2, 4, 5)  # xx, xy (and xz, yy, yz)
+    deviation = max([abs(stress[k + 9 * c]) for c in range(len(stress) // 9) for k in zero] +
+                    [abs(s + pressure) for s in stress[nn::9]] or [float("inf")]) / pressure
+    check(deviation < 1e-6, f"{name}: uniform stress sigma_nn = -p in both blocks, max deviation "
+          f"{deviation:.1e} p over {len(normal)} output points")
+
+
+for pair, slave, ranks, mode in cases:
+    cells = 10 if slave == "upper_bottom" else 8
+    nodes = cells + 1 if pair[1] == "1" else 2 * cells + 1
+    text = (scene if slave == "upper_bottom" else swapped_scene).replace(PAIR, f"set Finite element pair  = {pair}")
+    if pair.startswith("P"):
+        text = text.replace(quadrilateral_geo, triangle_geo)
+        if triangle_geo not in text:
+            raise SystemExit("FAIL: the scene does not name prm/meshes/contact_patch.geo by its path")
+    if mode == "weighted":
+        text += WEIGHTED
+    check_case(f"{pair}, slave {slave}, {ranks} rank(s), {mode}", text,
+               os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}-{mode}"), ranks, nodes, 2, length)
+
+# 3D (prm/contact_patch_test_3d.prm): two 10 x 10 x 5 blocks, 8 x 6 graded faces
+# below, 10 x 10 above, after one global refinement; the slave faces are cut
+# along the projected master faces (3D segment integration). sigma_zz = -p.
+scene_3d = sltest.read_prm(os.path.join(prm_dir, "contact_patch_test_3d.prm"))
+for entry in (SLAVE, MASTER, PAIR, "set Complementarity      = weighted"):
+    if entry not in scene_3d:
+        raise SystemExit(f"FAIL: prm/contact_patch_test_3d.prm has no '{entry}'")
+swapped_3d = (scene_3d.replace(SLAVE, "set Contact boundary ids = lower_top")
+              .replace(MASTER, "set Master boundary ids  = upper_bottom"))
+for pair, slave, ranks, mode in [("Q1/P1", "upper_bottom", 1, "weighted"), ("Q1/P1", "lower_top", 2, "weighted"),
+                                 ("Q1/P1", "upper_bottom", 2, "pointwise"), ("Q2/P1", "lower_top", 1, "weighted"),
+                                 ("Q2/P2", "upper_bottom", 1, "pointwise")]:
+    faces = (10, 10) if slave == "upper_bottom" else (8, 6)
+    degree = max(int(pair[1]), int(pair[-1]))  # the profile has the nodes of the richer space
+    nodes = (degree * faces[0] + 1) * (degree * faces[1] + 1)
+    text = ((scene_3d if slave == "upper_bottom" else swapped_3d).replace(PAIR, f"set Finite element pair  = {pair}")
+            .replace("set Complementarity      = weighted", f"set Complementarity = {mode}"))
+    check_case(f"3D {pair}, slave {slave}, {ranks} rank(s), {mode}", text,
+               os.path.join(workdir, f"3d-{pair.replace('/', '')}-{slave}-np{ranks}-{mode}"), ranks, nodes, 3,
+               length * length)
 check.finish()

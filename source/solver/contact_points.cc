@@ -3,6 +3,7 @@
 #include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <stabilized_lagrangian/contact/segments.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
@@ -212,8 +213,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::update_segments()
   {
-    // (3D faces are not cut: the quadrature of the contact faces is used whole)
-    if (dim != 2)
+    // (triangle faces are not cut: the quadrature of the contact faces is used whole)
+    if (dim == 3 && simplex_mesh())
       return false;
     FaceEvaluator                       ends(*this, QTrapezoid<dim - 1>(), false);
     std::vector<ContactFace>            faces;
@@ -222,39 +223,9 @@ namespace StabilizedLagrangian
     for (const auto &face : contact_faces)
       {
         ends.reinit(face, ghosted_solution);
-        const Point<dim>     A      = ends.kinematics(0).position;
-        const Tensor<1, dim> AB     = ends.kinematics(1).position - A;
-        const double         length = AB.norm();
-        BoundingBox<dim>     box(std::vector<Point<dim>>{A, A + AB});
-        box.extend(0.5 * length);
-        // the parameters in (0, 1) of the master's vertices projected on the face
-        std::vector<double> cuts = {0., 1.};
-        for (const auto &vertex : partner->vertices_near(box))
-          {
-            const double s = (vertex - A) * AB / (length * length);
-            if (s > 1e-8 && s < 1. - 1e-8 && (vertex - (A + s * AB)).norm() <= length)
-              cuts.push_back(s);
-          }
-        std::sort(cuts.begin(), cuts.end());
-        cuts.erase(std::unique(cuts.begin(),
-                               cuts.end(),
-                               [](const double a, const double b) { return b - a < 1e-8; }),
-                   cuts.end());
         ContactFace cut_face{
             face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr, nullptr};
-        if (cuts.size() > 2)
-          {
-            std::vector<Point<dim - 1>> points;
-            std::vector<double>         weights;
-            for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
-              for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
-                {
-                  const double width = cuts[k + 1] - cuts[k];
-                  points.emplace_back(cuts[k] + width * contact_quadrature.point(q)[0]);
-                  weights.push_back(width * contact_quadrature.weight(q));
-                }
-            cut_face.segments = std::make_shared<const Quadrature<dim - 1>>(points, weights);
-          }
+        cut_face.segments = face_segments(ends);
         const Quadrature<dim - 1> &old_rule = face_quadrature(face);
         const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);
         bool                       same     = old_rule.size() == new_rule.size();
@@ -278,6 +249,63 @@ namespace StabilizedLagrangian
     contact_faces  = faces;
     contact_states = states;
     return Utilities::MPI::max(changed, mpi_communicator) == 1;
+  }
+
+  template <int dim>
+  std::shared_ptr<const Quadrature<dim - 1>>
+  ContactProblem<dim>::face_segments(const FaceEvaluator &corners) const
+  {
+    std::vector<Point<dim>> at_corners;
+    for (unsigned int v = 0; v < corners.n_points(); ++v)
+      at_corners.push_back(corners.kinematics(v).position);
+    BoundingBox<dim> box(at_corners);
+    const double     diameter = std::sqrt(box.side_length(0) * box.side_length(0) +
+                                      box.side_length(1) * box.side_length(1) +
+                                      (dim == 3 ? std::pow(box.side_length(dim - 1), 2) : 0.));
+    box.extend(0.5 * diameter);
+    const std::vector<Point<dim>> master_vertices = partner->vertices_near(box);
+    if (master_vertices.empty())
+      return nullptr;
+    if constexpr (dim == 3)
+      {
+        // a quadrilateral face against the master's quadrilaterals
+        const unsigned int n_1d = static_cast<unsigned int>(
+            std::lround(std::sqrt(static_cast<double>(contact_quadrature.size()))));
+        return Contact::face_segments({{at_corners[0], at_corners[1], at_corners[2], at_corners[3]}},
+                                      master_vertices,
+                                      2 * n_1d - 1);
+      }
+    else
+      {
+        const Point<dim>     A      = at_corners[0];
+        const Tensor<1, dim> AB     = at_corners[1] - A;
+        const double         length = AB.norm();
+        // the parameters in (0, 1) of the master's vertices projected on the face
+        std::vector<double> cuts = {0., 1.};
+        for (const auto &vertex : master_vertices)
+          {
+            const double s = (vertex - A) * AB / (length * length);
+            if (s > 1e-8 && s < 1. - 1e-8 && (vertex - (A + s * AB)).norm() <= length)
+              cuts.push_back(s);
+          }
+        std::sort(cuts.begin(), cuts.end());
+        cuts.erase(std::unique(cuts.begin(),
+                               cuts.end(),
+                               [](const double a, const double b) { return b - a < 1e-8; }),
+                   cuts.end());
+        if (cuts.size() <= 2)
+          return nullptr;
+        std::vector<Point<dim - 1>> points;
+        std::vector<double>         weights;
+        for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+          for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+            {
+              const double width = cuts[k + 1] - cuts[k];
+              points.emplace_back(cuts[k] + width * contact_quadrature.point(q)[0]);
+              weights.push_back(width * contact_quadrature.weight(q));
+            }
+        return std::make_shared<const Quadrature<dim - 1>>(points, weights);
+      }
   }
 
   template <int dim>
@@ -344,6 +372,8 @@ namespace StabilizedLagrangian
   template class ContactProblem<dim>::FaceEvaluator;                                   \
   template void                            ContactProblem<dim>::update_pairings(bool); \
   template bool                            ContactProblem<dim>::update_segments();     \
+  template std::shared_ptr<const Quadrature<dim - 1>> ContactProblem<dim>::face_segments(      \
+      const FaceEvaluator &) const;                                                            \
   template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(        \
       const ContactPointState<dim> &, const ContactKinematics<dim> &) const;           \
   template void ContactProblem<dim>::evaluate_point_state(                             \

@@ -354,6 +354,15 @@ namespace StabilizedLagrangian
       std::vector<double>         m_coefficients;
     };
 
+    /**
+     * The segments of one contact face (ContactFace::segments) from its
+     * current corners (@p corners: a FaceEvaluator at the face's vertices):
+     * 2D, the cuts at the projected master vertices; 3D, the parts of the
+     * projected master faces (Contact::face_segments()); null: nothing to cut.
+     */
+    std::shared_ptr<const Quadrature<dim - 1>>
+    face_segments(const FaceEvaluator &corners) const;
+
     // --- weighted_contact.cc: `Contact/Complementarity = weighted` ---
     /**
      * The nodal conditions (doc/formulation.md, "Weighted complementarity"):
