@@ -108,6 +108,31 @@ end
   }
 
   /**
+   * Two soft blocks of tests/scenes/two_blocks*.geo touching on non-matching
+   * meshes (slave upper_bottom, master lower_top), for the deformable master's
+   * linearised pairing: the Jacobian's columns of the master's DoFs.
+   */
+  template <int dim>
+  std::string
+  two_bodies()
+  {
+    return std::string(R"(
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = )") +
+           SL_TEST_SCENES + (dim == 2 ? "/two_blocks.geo" : "/two_blocks_3d.geo") + R"(
+    set Global refinements = 0
+  end
+end
+subsection Contact
+  set Contact boundary ids = upper_bottom
+  set Master boundary ids = lower_top
+end
+)";
+  }
+
+  /**
    * @param state the frozen statuses; with @p generalized, the statuses follow
    * the iterate and @p state only chooses the semi-multipliers (stick or slip)
    */
@@ -140,9 +165,10 @@ end
        const std::string &quadrature,
        const double       mu,
        const bool         generalized,
-       const std::string &material  = "",
-       const double       amplitude = 1e-3,
-       const std::string &label     = "")
+       const std::string &material      = "",
+       const double       amplitude     = 1e-3,
+       const std::string &label         = "",
+       const bool         require_mixed = true)
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
@@ -263,7 +289,7 @@ end
                     << names[static_cast<int>(state)] << " rows " << blocks[b]
                     << ": |J v - FD| = " << e << ", |J v| = " << s << std::endl;
       }
-    if (generalized)
+    if (generalized && require_mixed)
       {
         // the statuses must really be mixed for the test to mean something
         const unsigned int total = Utilities::MPI::sum(
@@ -312,6 +338,17 @@ main(int argc, char *argv[])
           test<2>(state, "Gauss-Lobatto", 0.3, false, prm, 2.5e-2, label);
           test<3>(state, "Gauss-Lobatto", 0.3, false, prm, 2.5e-2, label);
         }
+  // the generalized Newton with a deformable master: the pairing (ξ, n, t_α)
+  // linearised in the slave's and the master's DoFs, sticking and slipping,
+  // with both conditions (every point is in contact: the statuses are not mixed)
+  for (const std::string &conditions : {std::string(), weighted})
+    for (const State state : {State::stick, State::slip})
+      {
+        const std::string label =
+            std::string("two bodies ") + (conditions.empty() ? "" : "weighted ");
+        test<2>(state, "Gauss", 0.3, true, two_bodies<2>() + conditions, 1e-3, label, false);
+        test<3>(state, "Gauss", 0.3, true, two_bodies<3>() + conditions, 1e-3, label, false);
+      }
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -82,6 +82,44 @@ end
 """
 
 
+def two_blocks(dim, mesh, friction, refinements=None):
+    """tests/scenes/<mesh> (two blocks): the geometry (refined once in 2D, not in 3D unless
+    refinements says), E = 1000 MPa, nu = 0.3, and the contact between the blocks' surfaces
+    upper_bottom (slave) and lower_top (master) with Coulomb friction."""
+    scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
+    if refinements is None:
+        refinements = 1 if dim == 2 else 0
+    return f"""set Dimension = {dim}
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = {scenes}/{mesh}
+    set Global refinements = {refinements}
+  end
+end
+subsection Material
+  set Model = linear elastic
+  subsection linear elastic
+    set Young's modulus = 1000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Contact
+  set Contact boundary ids = upper_bottom
+  set Master boundary ids = lower_top
+  set r_n = automatic
+  set r_t = automatic
+  set Contact quadrature = Gauss
+  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = {friction}
+    end
+  end
+end
+"""
+
+
 def read_prm(path):
     """The text of a parameter file, with the relative mesh files it names made absolute (the
     tests run it from another directory)."""

@@ -22,46 +22,11 @@ import sltest
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
-scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
 mu = 0.2
 
 
-def two_blocks(dim, mesh, friction):
-    """Geometry, the default material and the contact between the blocks'
-    surfaces upper_bottom (slave) and lower_top (master)."""
-    return f"""set Dimension = {dim}
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {scenes}/{mesh}
-    set Global refinements = {1 if dim == 2 else 0}
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 1000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = upper_bottom
-  set Master boundary ids = lower_top
-  set r_n = automatic
-  set r_t = automatic
-  set Contact quadrature = Gauss
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = {friction}
-    end
-  end
-end
-"""
-
-
 def two_blocks_2d(extra=""):
-    return two_blocks(2, "two_blocks.geo", mu) + f"""subsection Boundary conditions
+    return sltest.two_blocks(2, "two_blocks.geo", mu) + f"""subsection Boundary conditions
   subsection Dirichlet 1
     set Boundary id = lower_bottom
     set Components = x, y
@@ -117,7 +82,7 @@ if "nested" in runs and "nested, 2 ranks" in runs:
 
 # 3D: uniform pressure on the upper block
 p, area = 10.0, 100.0
-three_d = two_blocks(3, "two_blocks_3d.geo", 0) + f"""subsection Material 2
+three_d = sltest.two_blocks(3, "two_blocks_3d.geo", 0) + f"""subsection Material 2
   set Bodies = upper
   set Model = linear elastic
   subsection linear elastic

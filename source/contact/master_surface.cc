@@ -343,6 +343,17 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    void
+    MasterSurface<dim>::shape_gradients(const Pairing<dim>              &pairing,
+                                        std::vector<Tensor<1, dim - 1>> &gradients) const
+    {
+      gradients.clear();
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        for (unsigned int d = 0; d < dim; ++d)
+          gradients.push_back(node_element.shape_grad(k, pairing.master_reference_point));
+    }
+
+    template <int dim>
     Tensor<1, dim>
     MasterSurface<dim>::follow(Pairing<dim>                        &pairing,
                                const TrilinosWrappers::MPI::Vector &u,
@@ -354,6 +365,45 @@ namespace StabilizedLagrangian
       const Point<dim - 1> &xi   = pairing.master_reference_point;
       const Tensor<1, dim>  now  = displacement(face, xi, u);
       pairing.master_point       = reference_point(face, xi) + now;
+
+      // the surface's derivatives at ξ for the linearised pairing: the
+      // multilinear reference map, then the displacement's nodes
+      Tensor<1, dim> dx[dim - 1];
+      position(face, xi, dx);
+      for (unsigned int a = 0; a < dim - 1; ++a)
+        {
+          pairing.surface_tangents[a]   = dx[a];
+          pairing.increment_gradient[a] = Tensor<1, dim>();
+          for (unsigned int b = 0; b < dim - 1; ++b)
+            pairing.surface_curvature[a][b] = Tensor<1, dim>();
+        }
+      if constexpr (dim == 3)
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          {
+            // ∂²/∂ξ_0∂ξ_1 of the bilinear weight: ±1 (the pure second derivatives vanish)
+            const double mixed = (((v & 1) ? 1. : -1.) * ((v & 2) ? 1. : -1.));
+            pairing.surface_curvature[0][1] += mixed * face_vertices[face * n_vertices + v];
+          }
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        {
+          const Tensor<1, dim> &u_k      = node_displacements[face * n_nodes + k];
+          const auto            gradient = node_element.shape_grad(k, xi);
+          const auto            hessian  = node_element.shape_grad_grad(k, xi);
+          Tensor<1, dim>        increment;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const types::global_dof_index dof = face_dofs[(face * n_nodes + k) * dim + d];
+              increment[d]                      = u(dof) - step_start(dof);
+            }
+          for (unsigned int a = 0; a < dim - 1; ++a)
+            {
+              pairing.increment_gradient[a] += gradient[a] * increment;
+              for (unsigned int b = 0; b < dim - 1; ++b)
+                pairing.surface_curvature[a][b] += hessian[a][b] * u_k;
+            }
+        }
+      if constexpr (dim == 3)
+        pairing.surface_curvature[1][0] = pairing.surface_curvature[0][1];
       return now - displacement(face, xi, step_start);
     }
 

@@ -8,15 +8,23 @@ namespace StabilizedLagrangian
   {
     namespace
     {
-      /** The coordinate axis least aligned with @p n: it gives a well-conditioned t_0. */
+      /**
+       * The first coordinate axis e_d with |n_d| < 0.7: t_0 from it is well
+       * conditioned (|e_d − (e_d·n) n| > 0.71), and the choice changes only
+       * where a component of n crosses 0.7 (45° from an axis). The least
+       * aligned axis would be as well conditioned but jumps between e_x and
+       * e_y wherever |n_x| = |n_y|, e.g. everywhere on a nearly flat deformable
+       * surface with n ≈ e_z: the tangent basis then turns by 90° between two
+       * Newton iterates and the components of Λ mean another direction.
+       * (One of the components is below 1/√3 for a unit n.)
+       */
       template <int dim>
       Tensor<1, dim>
       least_aligned_axis(const Tensor<1, dim> &n)
       {
         unsigned int axis = 0;
-        for (unsigned int d = 1; d < dim; ++d)
-          if (std::abs(n[d]) < std::abs(n[axis]))
-            axis = d;
+        while (axis + 1 < dim && std::abs(n[axis]) >= 0.7)
+          ++axis;
         Tensor<1, dim> e;
         e[axis] = 1.;
         return e;
@@ -57,7 +65,7 @@ namespace StabilizedLagrangian
       else
         {
           // t_0 = a/|a| with a = e − (e·n) n, t_1 = n × t_0; e is the fixed axis
-          // of tangent_basis(), so the derivative holds away from the switches
+          // of tangent_basis(), so the derivative holds away from its switches
           const Tensor<1, dim> e      = least_aligned_axis(n);
           const Tensor<1, dim> a      = e - (e * n) * n;
           const double         a_norm = a.norm();

@@ -53,8 +53,8 @@ namespace StabilizedLagrangian
       bilinear(const std::array<Point<3>, 4> &c, const Point<2> &xi, Tensor<1, 3> (&dx)[2])
       {
         const double s = xi[0], t = xi[1];
-        dx[0]          = (1. - t) * (c[1] - c[0]) + t * (c[3] - c[2]);
-        dx[1]          = (1. - s) * (c[2] - c[0]) + s * (c[3] - c[1]);
+        dx[0] = (1. - t) * (c[1] - c[0]) + t * (c[3] - c[2]);
+        dx[1] = (1. - s) * (c[2] - c[0]) + s * (c[3] - c[1]);
         return Point<3>((1. - s) * (1. - t) * c[0] + s * (1. - t) * c[1] + (1. - s) * t * c[2] +
                         s * t * c[3]);
       }

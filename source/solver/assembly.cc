@@ -287,9 +287,9 @@ namespace StabilizedLagrangian
   {
     FaceEvaluator                    evaluator(*this, contact_quadrature);
     internal::ContactFaceSystem<dim> local(*fe_u, *fe_m);
-    // the generalized Newton's linearised pairing (a plane's does not move; a
-    // deformable master's pairing is refreshed before the assembly, not linearised)
-    const bool   linearise_geometry = loops.pairing_turns();
+    // the generalized Newton's linearised pairing: a curved obstacle's, and a
+    // deformable master's (paired anew before the assembly, linearised in it)
+    const bool   linearise_geometry = loops.pairing_turns() || loops.pairs_before_assembly();
     PointRefresh refresh            = loops.at_iterate();
     // weighted: the nodes' statuses and thresholds come from the whole of
     // their supports, so what the iterate refreshes is refreshed first
@@ -319,7 +319,8 @@ namespace StabilizedLagrangian
                              q,
                              *partner,
                              state.pairing,
-                             linearise_geometry ? &k.step_increment : nullptr);
+                             linearise_geometry ? &k.step_increment : nullptr,
+                             state.pairing.gap(k.position));
             if (weighted)
               {
                 local.add_weighted_residual(

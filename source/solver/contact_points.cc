@@ -225,7 +225,7 @@ namespace StabilizedLagrangian
         ends.reinit(face, ghosted_solution);
         ContactFace cut_face{
             face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr, nullptr};
-        cut_face.segments = face_segments(ends);
+        cut_face.segments                   = face_segments(ends);
         const Quadrature<dim - 1> &old_rule = face_quadrature(face);
         const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);
         bool                       same     = old_rule.size() == new_rule.size();
@@ -271,9 +271,10 @@ namespace StabilizedLagrangian
         // a quadrilateral face against the master's quadrilaterals
         const unsigned int n_1d = static_cast<unsigned int>(
             std::lround(std::sqrt(static_cast<double>(contact_quadrature.size()))));
-        return Contact::face_segments({{at_corners[0], at_corners[1], at_corners[2], at_corners[3]}},
-                                      master_vertices,
-                                      2 * n_1d - 1);
+        return Contact::face_segments(
+            {{at_corners[0], at_corners[1], at_corners[2], at_corners[3]}},
+            master_vertices,
+            2 * n_1d - 1);
       }
     else
       {
@@ -365,21 +366,21 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                            \
-  template void ContactProblem<dim>::setup_contact_points();                           \
-  template bool ContactProblem<dim>::finite_strain() const;                            \
-  template void ContactProblem<dim>::set_consistent_nodal_weights();                   \
-  template class ContactProblem<dim>::FaceEvaluator;                                   \
-  template void                            ContactProblem<dim>::update_pairings(bool); \
-  template bool                            ContactProblem<dim>::update_segments();     \
-  template std::shared_ptr<const Quadrature<dim - 1>> ContactProblem<dim>::face_segments(      \
-      const FaceEvaluator &) const;                                                            \
-  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(        \
-      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;           \
-  template void ContactProblem<dim>::evaluate_point_state(                             \
-      ContactPointState<dim> &, ContactKinematics<dim> &, const PointRefresh &) const; \
-  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,          \
-                                            const ContactKinematics<dim> &) const;   \
+#define SL_INSTANTIATE(dim)                                                                       \
+  template void ContactProblem<dim>::setup_contact_points();                                      \
+  template bool ContactProblem<dim>::finite_strain() const;                                       \
+  template void ContactProblem<dim>::set_consistent_nodal_weights();                              \
+  template class ContactProblem<dim>::FaceEvaluator;                                              \
+  template void                                       ContactProblem<dim>::update_pairings(bool); \
+  template bool                                       ContactProblem<dim>::update_segments();     \
+  template std::shared_ptr<const Quadrature<dim - 1>> ContactProblem<dim>::face_segments(         \
+      const FaceEvaluator &) const;                                                               \
+  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(                   \
+      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;                      \
+  template void ContactProblem<dim>::evaluate_point_state(                                        \
+      ContactPointState<dim> &, ContactKinematics<dim> &, const PointRefresh &) const;            \
+  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,                     \
+                                            const ContactKinematics<dim> &) const;              \
   template double ContactProblem<dim>::threshold_pressure(double) const;
 
   SL_INSTANTIATE(2)

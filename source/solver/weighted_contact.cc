@@ -297,6 +297,11 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::weighted_contact_statistics(StepStatistics                 &stats,
                                                    Contact::FrictionLawCheck<dim> &check)
   {
+    // the nodal quantities of the converged iterate (the last assembly saw the
+    // iterate before the last update); a linearised threshold is s = μ λ_j of it
+    update_nodal_integrals(false);
+    if (loops.at_iterate().threshold)
+      update_nodal_thresholds();
     unsigned int counts[4] = {0, 0, 0, 0}; // all, in contact, stick, slip
     for (const auto &[node, semi_dofs] : nodal.owned_nodes)
       {

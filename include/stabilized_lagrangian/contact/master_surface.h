@@ -118,6 +118,9 @@ namespace StabilizedLagrangian
                    std::vector<unsigned int>            &components,
                    std::vector<double>                  &values) const override;
 
+      void
+      shape_gradients(const Pairing<dim>              &pairing,
+                      std::vector<Tensor<1, dim - 1>> &gradients) const override;
       /** @brief The displacement DoFs of face @p face (node-major, dim per node). */
       ArrayView<const types::global_dof_index>
       face_dof_indices(const unsigned int face) const override

@@ -37,6 +37,16 @@ namespace StabilizedLagrangian
        */
       int            master_face = -1;
       Point<dim - 1> master_reference_point;
+      /**
+       * With a deformable master, at ξ in the configuration of the pairing
+       * (Partner::follow()): the surface tangents τ_a = ∂x²/∂ξ_a, the second
+       * derivatives ∂²x²/∂ξ_a∂ξ_b and the surface gradient ∂Δu²/∂ξ_a of the
+       * master's step increment: what the linearised pairing needs
+       * (doc/formulation.md, "Two deformable bodies").
+       */
+      std::array<Tensor<1, dim>, dim - 1>                      surface_tangents;
+      std::array<std::array<Tensor<1, dim>, dim - 1>, dim - 1> surface_curvature;
+      std::array<Tensor<1, dim>, dim - 1>                      increment_gradient;
 
       /** @brief Gap g_n = (x − x²)·n of a slave position x with this pairing frozen. */
       double

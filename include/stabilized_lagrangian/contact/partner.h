@@ -108,6 +108,16 @@ namespace StabilizedLagrangian
                    std::vector<double>                  &values) const = 0;
 
       /**
+       * @brief ∂N_r/∂ξ of the shape values of shape_values(), in its order
+       * (nothing for a rigid obstacle, whose pairing moves no DoF).
+       */
+      virtual void
+      shape_gradients(const Pairing<dim> &, std::vector<Tensor<1, dim - 1>> &gradients) const
+      {
+        gradients.clear();
+      }
+
+      /**
        * @brief Vertices of the surface within @p box, where it kinks: the
        * slave faces are integrated in segments between them.
        */

@@ -81,12 +81,20 @@ namespace StabilizedLagrangian
         normal_shape.resize(n_d);
         tangential_shape.resize(n_d);
         slip_derivative.resize(n_d);
+        normal_variation.resize(n_d);
+        tangent_variation.resize(n_d);
+        xi_variation.resize(n_d);
+        partner_gradient.resize(n_d);
+        partner_component.resize(n_d);
       }
 
       /**
        * The shape functions at point @p q: φ_j of the displacements (slave,
-       * then partner), φ_j·n, t_α·φ_j, ∂Δs/∂u_j (plus (∂t_α/∂x φ_j)·Δu when
-       * the tangents turn: @p step_increment given), and ψ of the multipliers.
+       * then partner), φ_j·n, t_α·φ_j, ∂Δs/∂u_j, and ψ of the multipliers.
+       * When the pairing is linearised (@p step_increment given: the relative
+       * Δs vector; @p gap: g_n at the point), also how n, t_α and, with a
+       * deformable master, ξ move with each DoF (pairing_variations()), and
+       * ∂Δs/∂u_j includes them.
        */
       void
       set_shapes(const FEFaceValues<dim>     &u_values,
@@ -94,26 +102,127 @@ namespace StabilizedLagrangian
                  const unsigned int           q,
                  const Contact::Partner<dim> &partner,
                  const Contact::Pairing<dim> &pairing,
-                 const Tensor<1, dim>        *step_increment)
+                 const Tensor<1, dim>        *step_increment,
+                 const double                 gap = 0.)
       {
         for (unsigned int i = 0; i < n_d; ++i)
-          phi[i] = Tensor<1, dim>();
+          {
+            phi[i]              = Tensor<1, dim>();
+            partner_gradient[i] = Tensor<1, dim - 1>();
+          }
         for (unsigned int i = 0; i < n_u_cell; ++i)
           phi[i][u_component[i]] = u_values.shape_value(i, q);
         partner.shape_values(pairing, partner_dofs, partner_components, partner_values);
+        partner.shape_gradients(pairing, partner_gradients);
         for (unsigned int r = 0; r < partner_dofs.size(); ++r)
-          phi[partner_position[partner_dofs[r]]][partner_components[r]] -= partner_values[r];
+          {
+            const unsigned int i = partner_position[partner_dofs[r]];
+            phi[i][partner_components[r]] -= partner_values[r];
+            partner_component[i] = partner_components[r];
+            if (r < partner_gradients.size())
+              partner_gradient[i] = partner_gradients[r];
+          }
         for (unsigned int i = 0; i < n_d; ++i)
           {
             normal_shape[i]     = phi[i] * pairing.normal;
             tangential_shape[i] = pairing.tangential_components(phi[i]);
             slip_derivative[i]  = tangential_shape[i];
-            if (step_increment)
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                slip_derivative[i][a] += (pairing.tangent_gradients[a] * phi[i]) * *step_increment;
           }
+        if (step_increment)
+          pairing_variations(pairing, *step_increment, gap);
         for (unsigned int a = 0; a < n_m; ++a)
           psi[a] = m_values.shape_value(m_local[a], q);
+      }
+
+      /**
+       * The linearised pairing (doc/formulation.md, "Two deformable bodies"):
+       * per DoF j, δn_j, δt_α,j and δξ_j, and the slip's convective terms.
+       * A rigid obstacle: δn = ∂n/∂x φ_j, ξ does not count. A deformable
+       * master: the closest-point condition (x¹ − x²(ξ))·τ_b = 0 gives
+       * A δξ = τ·(δx¹ − N δu²) + g n·(∂N δu²), A_ab = τ_a·τ_b − g n·x²,ab;
+       * then δτ_a = ∂_a N δu² + x²,ab δξ_b and δn = −m^ab (n·δτ_a) τ_b.
+       */
+      void
+      pairing_variations(const Contact::Pairing<dim> &pairing,
+                         const Tensor<1, dim>        &slip_vector,
+                         const double                 gap)
+      {
+        const bool         deformable         = pairing.master_face >= 0;
+        const auto         tangent_derivative = Contact::tangent_basis_derivative(pairing.normal);
+        Tensor<2, dim - 1> metric, A;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          for (unsigned int b = 0; b < dim - 1; ++b)
+            {
+              metric[a][b] = pairing.surface_tangents[a] * pairing.surface_tangents[b];
+              A[a][b] = metric[a][b] - gap * (pairing.normal * pairing.surface_curvature[a][b]);
+            }
+        const Tensor<2, dim - 1> metric_inverse =
+            deformable ? invert(metric) : Tensor<2, dim - 1>();
+        const Tensor<2, dim - 1> A_inverse = deformable ? invert(A) : Tensor<2, dim - 1>();
+        for (unsigned int j = 0; j < n_d; ++j)
+          {
+            const bool partner_dof = j >= n_u_cell;
+            xi_variation[j]        = Tensor<1, dim - 1>();
+            if (!deformable)
+              normal_variation[j] = pairing.normal_gradient * phi[j];
+            else
+              {
+                Tensor<1, dim - 1> rhs;
+                for (unsigned int b = 0; b < dim - 1; ++b)
+                  rhs[b] = pairing.surface_tangents[b] * phi[j] +
+                           (partner_dof ? gap * partner_gradient[j][b] *
+                                              pairing.normal[partner_component[j]]
+                                        : 0.);
+                xi_variation[j] = A_inverse * rhs;
+                Tensor<1, dim> d_tau[dim - 1];
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  {
+                    if (partner_dof)
+                      d_tau[a][partner_component[j]] += partner_gradient[j][a];
+                    for (unsigned int b = 0; b < dim - 1; ++b)
+                      d_tau[a] += pairing.surface_curvature[a][b] * xi_variation[j][b];
+                  }
+                normal_variation[j] = Tensor<1, dim>();
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  for (unsigned int b = 0; b < dim - 1; ++b)
+                    normal_variation[j] -= metric_inverse[a][b] * (pairing.normal * d_tau[a]) *
+                                           pairing.surface_tangents[b];
+              }
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              {
+                tangent_variation[j][a] = deformable ? tangent_derivative[a] * normal_variation[j]
+                                                     : pairing.tangent_gradients[a] * phi[j];
+                slip_derivative[j][a] += tangent_variation[j][a] * slip_vector;
+                if (deformable)
+                  for (unsigned int b = 0; b < dim - 1; ++b)
+                    slip_derivative[j][a] -=
+                        (pairing.tangents[a] * pairing.increment_gradient[b]) * xi_variation[j][b];
+              }
+          }
+      }
+
+      /**
+       * The traction @p normal_traction n + Σ @p tangential_traction_α t_α turns
+       * with the pairing and, on a deformable master, the partner's test
+       * functions −N_r(ξ) move with ξ: ∂(rhs_i)/∂u_j of those.
+       */
+      double
+      geometric_stiffness(const double                 normal_traction,
+                          const Tensor<1, dim - 1>    &tangential_traction,
+                          const Contact::Pairing<dim> &pairing,
+                          const unsigned int           i,
+                          const unsigned int           j) const
+      {
+        double value = -normal_traction * (phi[i] * normal_variation[j]);
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          value -= tangential_traction[a] * (phi[i] * tangent_variation[j][a]);
+        if (i >= n_u_cell && pairing.master_face >= 0)
+          {
+            const Tensor<1, dim> traction = normal_traction * pairing.normal +
+                                            pairing.from_tangential_components(tangential_traction);
+            value += traction[partner_component[i]] * (partner_gradient[i] * xi_variation[j]);
+          }
+        return value;
       }
 
       /**
@@ -157,13 +266,7 @@ namespace StabilizedLagrangian
               double value = normal_stiffness * normal_shape[i] * normal_shape[j] +
                              tangential_shape[i] * (tangential_stiffness * slip_derivative[j]);
               if (linearise_geometry)
-                {
-                  // the traction vector turns with n and t_α
-                  value -= normal_traction * (phi[i] * (pairing.normal_gradient * phi[j]));
-                  for (unsigned int a = 0; a < dim - 1; ++a)
-                    value -=
-                        tangential_traction[a] * (phi[i] * (pairing.tangent_gradients[a] * phi[j]));
-                }
+                value += geometric_stiffness(normal_traction, tangential_traction, pairing, i, j);
               matrix(i, j) += w * value;
             }
         add_multiplier_blocks(point, w);
@@ -251,12 +354,8 @@ namespace StabilizedLagrangian
         if (linearise_geometry)
           for (unsigned int i = 0; i < n_d; ++i)
             for (unsigned int j = 0; j < n_d; ++j)
-              {
-                double value = -field_pressure * (phi[i] * (pairing.normal_gradient * phi[j]));
-                for (unsigned int a = 0; a < dim - 1; ++a)
-                  value -= field_traction[a] * (phi[i] * (pairing.tangent_gradients[a] * phi[j]));
-                matrix(i, j) += w * value;
-              }
+              matrix(i, j) +=
+                  w * geometric_stiffness(field_pressure, field_traction, pairing, i, j);
         for (unsigned int b = 0; b < n_m; ++b)
           {
             const unsigned int                     c    = m_component[b];
@@ -308,6 +407,12 @@ namespace StabilizedLagrangian
       std::vector<types::global_dof_index> partner_dofs;
       std::vector<unsigned int>            partner_components;
       std::vector<double>                  partner_values;
+      std::vector<Tensor<1, dim - 1>>      partner_gradients;
+      /** the linearised pairing at the point: δn_j, δt_α,j, δξ_j; ∂N/∂ξ and component per DoF */
+      std::vector<Tensor<1, dim>>                      normal_variation;
+      std::vector<std::array<Tensor<1, dim>, dim - 1>> tangent_variation;
+      std::vector<Tensor<1, dim - 1>>                  xi_variation, partner_gradient;
+      std::vector<unsigned int>                        partner_component;
       /** the multiplier field's λ_n and tangential traction at the point (weighted) */
       double             field_pressure = 0.;
       Tensor<1, dim - 1> field_traction;
