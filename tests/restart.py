@@ -68,7 +68,32 @@ def killed_run(directory, ranks):
     if not finished:
         os.killpg(process.pid, signal.SIGKILL)
     process.wait()
+    kill_leftovers(directory)
     return delay, finished
+
+
+def kill_leftovers(directory):
+    """Kill every process still working in directory and wait until none is left: MPI ranks
+    may outlive a killed mpirun for a moment, and one that writes a statistics row after the
+    resumed run truncated the file puts that row among the resumed run's (seen once:
+    steps 4, 6, 5, 6, ...)."""
+    target = os.path.realpath(directory)
+    for _ in range(1000):
+        left = []
+        for pid in filter(str.isdigit, os.listdir("/proc")):
+            try:
+                if os.path.realpath(os.readlink(f"/proc/{pid}/cwd")) == target:
+                    left.append(int(pid))
+            except OSError:  # gone, or a zombie
+                pass
+        if not left:
+            return
+        for pid in left:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+        time.sleep(0.01)
 
 
 def rows(path):
