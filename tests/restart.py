@@ -13,7 +13,10 @@ and the forces equal to the nested loops' tolerance (1e-4 of each column's
 scale), see close_tables. The resumed run's .pvd must
 list the same, complete, files. Scenes: the J2 patin (material history) on 1
 rank and on 2 ranks, on quadrilaterals and on triangles (2 ranks), and a Hertz cylinder with two cycles of adaptive
-refinement (the mesh is rebuilt from the checkpoint's refinements).
+refinement (the mesh is rebuilt from the checkpoint's refinements), and the
+patin on a deformable block with `Complementarity = weighted` (the contact
+faces' segments of the checkpoint's configuration, the nodal statuses and
+thresholds).
 
 Then a damaged checkpoint is refused with a clear message and a non-zero
 exit: a truncated rank file, a resume on another number of ranks, a changed
@@ -154,6 +157,10 @@ scenes = {
     "hertz_adaptive": (scene_text("hertz_cylinder.prm", 4,
                                   sltest.nested_set("Adaptive refinement/Cycles", 2)), 1,
                        "the last cycle"),
+    # two bodies: the segments of the checkpoint's configuration, and the weighted
+    # conditions' nodal statuses and thresholds
+    "weighted_two_bodies_1_rank": (scene_text("patin_deformable_block.prm", 1,
+                                              sltest.nested_set("Contact/Complementarity", "weighted")), 1, ""),
 }
 for name, (text, ranks, note) in scenes.items():
     full, interrupted = f"{workdir}/{name}/full", f"{workdir}/{name}/killed"

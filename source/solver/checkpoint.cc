@@ -221,6 +221,19 @@ namespace StabilizedLagrangian
     for (const auto index : locally_owned)
       owned.push_back(solution(index));
     out.put(owned);
+    // the contact faces' segments (their number of points sets the states' layout)
+    std::vector<double> segments;
+    for (const auto &face : contact_faces)
+      {
+        const unsigned int n = face.segments ? face.segments->size() : 0;
+        segments.push_back(n);
+        for (unsigned int q = 0; q < n; ++q)
+          for (unsigned int d = 0; d < dim - 1; ++d)
+            segments.push_back(face.segments->point(q)[d]);
+        for (unsigned int q = 0; q < n; ++q)
+          segments.push_back(face.segments->weight(q));
+      }
+    out.put(segments);
     out.put(contact_states);
     out.put(owned_nodal_states());
     out.put(active_set);
@@ -422,6 +435,9 @@ namespace StabilizedLagrangian
     solution.compress(VectorOperation::insert);
     update_ghosts();
     step_start = ghosted_solution;
+    std::vector<double> segments;
+    in.get(segments);
+    restore_segments(segments);
     std::vector<ContactPointState<dim>> states;
     in.get(states);
     AssertThrow(states.size() == contact_states.size(),
@@ -478,13 +494,48 @@ namespace StabilizedLagrangian
     output_parameters.directory = base;
   }
 
+  template <int dim>
+  void
+  ContactProblem<dim>::restore_segments(const std::vector<double> &segments)
+  {
+    // the faces of the checkpoint's mesh, in the same order: each one's rule
+    std::size_t  k     = 0;
+    unsigned int first = 0;
+    for (auto &face : contact_faces)
+      {
+        AssertThrow(k < segments.size(),
+                    ExcMessage("the checkpoint's contact faces do not fit this mesh"));
+        const auto n = static_cast<unsigned int>(segments[k++]);
+        AssertThrow(k + n * dim <= segments.size(),
+                    ExcMessage("the checkpoint's contact faces do not fit this mesh"));
+        if (n > 0)
+          {
+            std::vector<Point<dim - 1>> points(n);
+            std::vector<double>         weights(n);
+            for (unsigned int q = 0; q < n; ++q)
+              for (unsigned int d = 0; d < dim - 1; ++d)
+                points[q][d] = segments[k++];
+            for (unsigned int q = 0; q < n; ++q)
+              weights[q] = segments[k++];
+            face.segments      = std::make_shared<const Quadrature<dim - 1>>(points, weights);
+            face.nodal_weights = nullptr;
+          }
+        else
+          face.segments = nullptr;
+        face.first_point = first;
+        first += face_quadrature(face).size();
+      }
+    contact_states.resize(first);
+  }
+
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                  \
-  template void         ContactProblem<dim>::write_checkpoint() const;       \
-  template unsigned int ContactProblem<dim>::restore_checkpoint();           \
-  template void         ContactProblem<dim>::replay_refinements();           \
-  template void         ContactProblem<dim>::continue_outputs(unsigned long, \
+#define SL_INSTANTIATE(dim)                                                                 \
+  template void         ContactProblem<dim>::write_checkpoint() const;                      \
+  template unsigned int ContactProblem<dim>::restore_checkpoint();                          \
+  template void         ContactProblem<dim>::restore_segments(const std::vector<double> &); \
+  template void         ContactProblem<dim>::replay_refinements();                          \
+  template void         ContactProblem<dim>::continue_outputs(unsigned long,                \
                                                       const StatisticsWriter::State &);
 
   SL_INSTANTIATE(2)

@@ -769,6 +769,14 @@ namespace StabilizedLagrangian
      */
     unsigned int
     restore_checkpoint();
+    /**
+     * The contact faces' segment rules of a checkpoint (per face: the number
+     * of points, their coordinates, their weights), and the contact points laid
+     * out for them: the segments follow the configuration of the checkpoint,
+     * not the mesh's initial one.
+     */
+    void
+    restore_segments(const std::vector<double> &segments);
     /** Refine the mesh again as refinement_history lists it, cell by cell. */
     void
     replay_refinements();
