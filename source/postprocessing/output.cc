@@ -241,13 +241,14 @@ namespace StabilizedLagrangian
         (dim == 3 && simplex_mesh())
             ? 1u
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
-    FaceEvaluator evaluator(*this, node_quadrature, false);
-    FaceNodes     nodes;
+    FaceEvaluator       evaluator(*this, node_quadrature, false);
+    FaceNodes           nodes;
+    const NodeResponses responses = weighted_complementarity() ? node_responses() : NodeResponses();
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
         if (weighted_complementarity())
-          face_node_responses(evaluator, nodes);
+          face_node_responses(evaluator, responses, nodes);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
             &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
         const auto   vertex_face = field_cell->face(face.face_no);

@@ -293,12 +293,14 @@ namespace StabilizedLagrangian
     PointRefresh refresh            = loops.at_iterate();
     // weighted: the nodes' statuses and thresholds come from the whole of
     // their supports, so what the iterate refreshes is refreshed first
-    const bool weighted = weighted_complementarity();
-    FaceNodes  nodes;
+    const bool    weighted = weighted_complementarity();
+    FaceNodes     nodes;
+    NodeResponses responses;
     if (weighted)
       {
         prepare_nodal_conditions(refresh);
-        refresh = PointRefresh();
+        refresh   = PointRefresh();
+        responses = node_responses();
       }
     for (const auto &face : contact_faces)
       {
@@ -308,7 +310,7 @@ namespace StabilizedLagrangian
           local.add_partner_dofs(*partner, contact_states[face.first_point + q].pairing);
         local.finish_dofs();
         if (weighted)
-          face_node_responses(evaluator, nodes);
+          face_node_responses(evaluator, responses, nodes);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
             ContactPointState<dim> &state = contact_states[face.first_point + q];

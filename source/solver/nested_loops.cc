@@ -232,7 +232,11 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "contact search");
     if (weighted_complementarity())
-      return update_nodal_statuses();
+      {
+        const unsigned int changes = update_nodal_statuses(false);
+        copy_nodal_states_to_points();
+        return changes;
+      }
     unsigned int changes = 0;
     PointRefresh what;
     what.status = true;
@@ -248,7 +252,11 @@ namespace StabilizedLagrangian
   {
     TimerOutput::Scope scope(timer, "contact search");
     if (weighted_complementarity())
-      return update_nodal_thresholds();
+      {
+        const double change = update_nodal_thresholds();
+        copy_nodal_states_to_points();
+        return change;
+      }
     double       max_change = 0., max_threshold = 0.;
     PointRefresh what;
     what.threshold = true;

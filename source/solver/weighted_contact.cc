@@ -44,23 +44,24 @@ namespace StabilizedLagrangian
     for (auto *vector : {&nodal.weights, &nodal.integrals, &nodal.status, &nodal.thresholds})
       vector->reinit(locally_owned, locally_relevant, mpi_communicator);
 
-    // the owned nodes and their Λ DoFs (the components of one base DoF)
-    std::map<types::global_dof_index, std::vector<types::global_dof_index>> nodes;
+    // the nodes of this rank's contact faces, their Λ DoFs; the owned ones
+    std::map<types::global_dof_index, std::vector<types::global_dof_index>> nodes, owned;
     for_each_contact_multiplier_face(
         [&](const std::vector<types::global_dof_index> &dofs, const unsigned int face) {
-          std::map<unsigned int, std::vector<types::global_dof_index>> by_base;
-          for (const unsigned int i : multiplier_face_dofs(face))
+          const std::vector<unsigned int>     &local = multiplier_face_dofs(face);
+          std::vector<types::global_dof_index> global(local.size());
+          for (unsigned int a = 0; a < local.size(); ++a)
+            global[a] = n_u + dofs[local[a]];
+          for (const auto &[base, node] : multiplier_nodes(local, global))
             {
-              const auto [component, base] = fe_m->system_to_component_index(i);
-              auto &node                   = by_base[base];
-              node.resize(fe_m->n_components());
-              node[component] = n_u + dofs[i];
+              const std::vector<types::global_dof_index> semi(node.begin() + 1, node.end());
+              nodes[node[0]] = semi;
+              if (locally_owned.is_element(node[0]))
+                owned[node[0]] = semi;
             }
-          for (const auto &[base, node] : by_base)
-            if (locally_owned.is_element(node[0]))
-              nodes[node[0]] = std::vector<types::global_dof_index>(node.begin() + 1, node.end());
         });
-    nodal.owned_nodes.assign(nodes.begin(), nodes.end());
+    nodal.nodes.assign(nodes.begin(), nodes.end());
+    nodal.owned_nodes.assign(owned.begin(), owned.end());
 
     if (!friction_law->threshold_depends_on_pressure())
       {
@@ -70,6 +71,23 @@ namespace StabilizedLagrangian
         thresholds.compress(VectorOperation::insert);
         nodal.thresholds = thresholds;
       }
+  }
+
+  template <int dim>
+  std::map<unsigned int, std::vector<types::global_dof_index>>
+  ContactProblem<dim>::multiplier_nodes(const std::vector<unsigned int>            &local,
+                                        const std::vector<types::global_dof_index> &global) const
+  {
+    // the components of one base DoF are one node: λ_n, then Λ_α
+    std::map<unsigned int, std::vector<types::global_dof_index>> by_base;
+    for (unsigned int a = 0; a < local.size(); ++a)
+      {
+        const auto [component, base] = fe_m->system_to_component_index(local[a]);
+        auto &node                   = by_base[base];
+        node.resize(fe_m->n_components());
+        node[component] = global[a];
+      }
+    return by_base;
   }
 
   template <int dim>
@@ -113,9 +131,10 @@ namespace StabilizedLagrangian
 
   template <int dim>
   unsigned int
-  ContactProblem<dim>::update_nodal_statuses()
+  ContactProblem<dim>::update_nodal_statuses(const bool integrals_current)
   {
-    update_nodal_integrals(false);
+    if (!integrals_current)
+      update_nodal_integrals(false);
     TrilinosWrappers::MPI::Vector status(locally_owned, mpi_communicator);
     unsigned int                  changes = 0;
     for (const auto &node : nodal.owned_nodes)
@@ -132,7 +151,6 @@ namespace StabilizedLagrangian
       }
     status.compress(VectorOperation::insert);
     nodal.status = status;
-    copy_nodal_states_to_points();
     return Utilities::MPI::sum(changes, mpi_communicator);
   }
 
@@ -152,9 +170,8 @@ namespace StabilizedLagrangian
       }
     thresholds.compress(VectorOperation::insert);
     nodal.thresholds = thresholds;
-    copy_nodal_states_to_points();
-    max_change    = Utilities::MPI::max(max_change, mpi_communicator);
-    max_threshold = Utilities::MPI::max(max_threshold, mpi_communicator);
+    max_change       = Utilities::MPI::max(max_change, mpi_communicator);
+    max_threshold    = Utilities::MPI::max(max_threshold, mpi_communicator);
     if (max_threshold == 0.)
       return max_change == 0. ? 0. : 1.;
     return max_change / max_threshold;
@@ -166,9 +183,11 @@ namespace StabilizedLagrangian
   {
     update_nodal_integrals(refresh.pairing);
     if (refresh.status)
-      update_nodal_statuses();
+      update_nodal_statuses(true);
     if (refresh.threshold)
       update_nodal_thresholds();
+    if (refresh.status || refresh.threshold)
+      copy_nodal_states_to_points();
   }
 
   template <int dim>
@@ -200,33 +219,28 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  void
-  ContactProblem<dim>::face_node_responses(const FaceEvaluator &evaluator, FaceNodes &nodes) const
+  typename ContactProblem<dim>::NodeResponses
+  ContactProblem<dim>::node_responses() const
   {
-    // group the face's multipliers by node (the base DoF they are components of)
-    const unsigned int                                           n_m = evaluator.m_dofs.size();
-    std::map<unsigned int, std::vector<types::global_dof_index>> by_base;
-    std::vector<unsigned int>                                    base_of(n_m);
-    for (unsigned int a = 0; a < n_m; ++a)
-      {
-        const auto [component, base] = fe_m->system_to_component_index(evaluator.m_local[a]);
-        auto &node                   = by_base[base];
-        node.resize(fe_m->n_components());
-        node[component] = evaluator.m_dofs[a];
-        base_of[a]      = base;
-      }
-    nodes.responses.clear();
-    nodes.responses.reserve(by_base.size());
-    std::map<unsigned int, unsigned int> index_of_base;
-    for (const auto &[base, node] : by_base)
-      {
-        index_of_base[base] = nodes.responses.size();
-        nodes.responses.push_back(nodal_response(
-            node[0], std::vector<types::global_dof_index>(node.begin() + 1, node.end())));
-      }
-    nodes.of_multiplier.resize(n_m);
-    for (unsigned int a = 0; a < n_m; ++a)
-      nodes.of_multiplier[a] = &nodes.responses[index_of_base[base_of[a]]];
+    NodeResponses responses;
+    for (const auto &[node, semi_dofs] : nodal.nodes)
+      responses.emplace(node, nodal_response(node, semi_dofs));
+    return responses;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::face_node_responses(const FaceEvaluator &evaluator,
+                                           const NodeResponses &responses,
+                                           FaceNodes           &nodes) const
+  {
+    std::map<unsigned int, const Contact::PointResponse<dim - 1> *> of_base;
+    for (const auto &[base, node] : multiplier_nodes(evaluator.m_local, evaluator.m_dofs))
+      of_base[base] = &responses.at(node[0]);
+    nodes.of_multiplier.resize(evaluator.m_dofs.size());
+    for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
+      nodes.of_multiplier[a] =
+          of_base.at(fe_m->system_to_component_index(evaluator.m_local[a]).second);
   }
 
   template <int dim>
@@ -301,7 +315,10 @@ namespace StabilizedLagrangian
     // iterate before the last update); a linearised threshold is s = μ λ_j of it
     update_nodal_integrals(false);
     if (loops.at_iterate().threshold)
-      update_nodal_thresholds();
+      {
+        update_nodal_thresholds();
+        copy_nodal_states_to_points();
+      }
     unsigned int counts[4] = {0, 0, 0, 0}; // all, in contact, stick, slip
     for (const auto &[node, semi_dofs] : nodal.owned_nodes)
       {
@@ -315,14 +332,15 @@ namespace StabilizedLagrangian
         ++counts[status == Contact::Status::stick ? 2 : 3];
       }
     // the forces of the multiplier field, ∫λ_n n + t_t over Γc
-    double         normal_force = 0.;
-    Tensor<1, dim> normal_vector_force, tangential_force;
-    FaceEvaluator  evaluator(*this, contact_quadrature);
-    FaceNodes      nodes;
+    double              normal_force = 0.;
+    Tensor<1, dim>      normal_vector_force, tangential_force;
+    FaceEvaluator       evaluator(*this, contact_quadrature);
+    const NodeResponses responses = node_responses();
+    FaceNodes           nodes;
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
-        face_node_responses(evaluator, nodes);
+        face_node_responses(evaluator, responses, nodes);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
             ContactPointState<dim> state = contact_states[face.first_point + q];
@@ -417,27 +435,32 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                  \
-  template void         ContactProblem<dim>::setup_nodal_conditions();                       \
-  template void         ContactProblem<dim>::update_nodal_integrals(bool);                   \
-  template unsigned int ContactProblem<dim>::update_nodal_statuses();                        \
-  template double       ContactProblem<dim>::update_nodal_thresholds();                      \
-  template void         ContactProblem<dim>::prepare_nodal_conditions(const PointRefresh &); \
-  template Contact::PointResponse<dim - 1> ContactProblem<dim>::nodal_response(              \
-      types::global_dof_index, const std::vector<types::global_dof_index> &) const;          \
-  template void ContactProblem<dim>::face_node_responses(const FaceEvaluator &, FaceNodes &) \
-      const;                                                                                 \
-  template void         ContactProblem<dim>::copy_nodal_states_to_points();                  \
-  template unsigned int ContactProblem<dim>::nearest_multiplier(const FaceEvaluator &,       \
-                                                                unsigned int) const;         \
-  template const Contact::PointResponse<dim - 1> *ContactProblem<dim>::nearest_node(         \
-      const FaceEvaluator &, const FaceNodes &, unsigned int) const;                         \
-  template std::vector<unsigned char> ContactProblem<dim>::nodal_statuses() const;           \
-  template void                       ContactProblem<dim>::weighted_contact_statistics(      \
-      StepStatistics &, Contact::FrictionLawCheck<dim> &);             \
-  template std::vector<double> ContactProblem<dim>::owned_nodal_states() const;              \
-  template unsigned int        ContactProblem<dim>::freeze_nodal_conditions(                 \
-      const std::function<bool(unsigned int)> &, double);                             \
+#define SL_INSTANTIATE(dim)                                                                                        \
+  template void         ContactProblem<dim>::setup_nodal_conditions();                                             \
+  template void         ContactProblem<dim>::update_nodal_integrals(bool);                                         \
+  template unsigned int ContactProblem<dim>::update_nodal_statuses(bool);                                          \
+  template double       ContactProblem<dim>::update_nodal_thresholds();                                            \
+  template void         ContactProblem<dim>::prepare_nodal_conditions(const PointRefresh &);                       \
+  template Contact::PointResponse<dim - 1> ContactProblem<dim>::nodal_response(                                    \
+      types::global_dof_index, const std::vector<types::global_dof_index> &) const;                                \
+  template typename ContactProblem<dim>::NodeResponses ContactProblem<dim>::node_responses()                       \
+      const;                                                                                                       \
+  template void ContactProblem<dim>::face_node_responses(                                                          \
+      const FaceEvaluator &, const NodeResponses &, FaceNodes &) const;                                            \
+  template std::map<unsigned int, std::vector<types::global_dof_index>>                                            \
+                        ContactProblem<dim>::multiplier_nodes(const std::vector<unsigned int> &,                   \
+                                        const std::vector<types::global_dof_index> &) const; \
+  template void         ContactProblem<dim>::copy_nodal_states_to_points();                                        \
+  template unsigned int ContactProblem<dim>::nearest_multiplier(const FaceEvaluator &,                             \
+                                                                unsigned int) const;                               \
+  template const Contact::PointResponse<dim - 1> *ContactProblem<dim>::nearest_node(                               \
+      const FaceEvaluator &, const FaceNodes &, unsigned int) const;                                               \
+  template std::vector<unsigned char> ContactProblem<dim>::nodal_statuses() const;                                 \
+  template void                       ContactProblem<dim>::weighted_contact_statistics(                            \
+      StepStatistics &, Contact::FrictionLawCheck<dim> &);                                   \
+  template std::vector<double> ContactProblem<dim>::owned_nodal_states() const;                                    \
+  template unsigned int        ContactProblem<dim>::freeze_nodal_conditions(                                       \
+      const std::function<bool(unsigned int)> &, double);                                                   \
   template void ContactProblem<dim>::restore_nodal_states(const std::vector<double> &);
 
   SL_INSTANTIATE(2)

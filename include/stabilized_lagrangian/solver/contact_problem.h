@@ -377,11 +377,14 @@ namespace StabilizedLagrangian
       /** the owned nodes: the λ_n DoF, and the Λ DoFs of the same node */
       std::vector<std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
           owned_nodes;
+      /** likewise, every node of this rank's contact faces (owned and ghost) */
+      std::vector<std::pair<types::global_dof_index, std::vector<types::global_dof_index>>> nodes;
     };
+    /** The response of every node of this rank's contact faces, by its λ_n DoF. */
+    using NodeResponses = std::map<types::global_dof_index, Contact::PointResponse<dim - 1>>;
     /** The responses of the nodes of one face's multipliers. */
     struct FaceNodes
     {
-      std::vector<Contact::PointResponse<dim - 1>> responses;
       /** per multiplier of the face (FaceEvaluator::m_dofs), its node's response */
       std::vector<const Contact::PointResponse<dim - 1> *> of_multiplier;
     };
@@ -396,10 +399,22 @@ namespace StabilizedLagrangian
     /** D_j, ∫ψ_j g_n and ∫ψ_j Δs at the iterate (the pairing refreshed with @p pairing). */
     void
     update_nodal_integrals(const bool pairing);
-    /** The status χ_j of every node at the iterate; returns how many changed. */
+    /**
+     * The face's multipliers grouped by node: per base DoF, the DoFs @p global
+     * (of the local indices @p local) of λ_n, then Λ_α.
+     */
+    std::map<unsigned int, std::vector<types::global_dof_index>>
+    multiplier_nodes(const std::vector<unsigned int>            &local,
+                     const std::vector<types::global_dof_index> &global) const;
+    /**
+     * The status χ_j of every node at the iterate (the integrals recomputed
+     * unless @p integrals_current); returns how many changed. The points'
+     * copies (copy_nodal_states_to_points()) are left to the caller.
+     */
     unsigned int
-    update_nodal_statuses();
-    /** The threshold s_j of every node; returns the largest change against the largest s_j. */
+    update_nodal_statuses(const bool integrals_current);
+    /** The threshold s_j of every node; returns the largest change against the largest s_j (the
+     * points' copies left to the caller). */
     double
     update_nodal_thresholds();
     /** Before an assembly: the integrals, and what the generalized Newton folds (@p refresh). */
@@ -409,9 +424,14 @@ namespace StabilizedLagrangian
     Contact::PointResponse<dim - 1>
     nodal_response(const types::global_dof_index               node,
                    const std::vector<types::global_dof_index> &semi_dofs) const;
+    /** Every node's response, once (an assembly, the output, the statistics). */
+    NodeResponses
+    node_responses() const;
     /** The responses of the nodes of the face @p evaluator was last set to. */
     void
-    face_node_responses(const FaceEvaluator &evaluator, FaceNodes &nodes) const;
+    face_node_responses(const FaceEvaluator &evaluator,
+                        const NodeResponses &responses,
+                        FaceNodes           &nodes) const;
     /**
      * The response of the node with the largest ψ_j at point @p q of the face
      * @p nodes were computed for; null without weighted complementarity.
