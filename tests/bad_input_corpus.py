@@ -282,6 +282,12 @@ for name, path, value, expect in (
         ("unknown material", "Material/Model", "steel", "Model"),
         ("unknown pair", "Contact/Finite element pair", "Q7/P9", "Finite element pair")):
     text_case(name, scene(settings=[(path, value)]), expect)
+# combinations the dual multiplier basis cannot take
+DUAL = ("Contact/Finite element pair", "Q1/P1 dual")
+text_case("dual pair, pointwise conditions", scene(settings=[DUAL]), "Complementarity = weighted")
+text_case("dual pair, nodal quadrature",
+          scene(settings=[DUAL, ("Contact/Complementarity", "weighted"),
+                          ("Contact/Contact quadrature", "Gauss-Lobatto")]), "Contact quadrature = Gauss")
 
 # --- Gmsh .msh files
 for name, mesh, expect in (

@@ -10,7 +10,7 @@
 // (Q1/P0, Q2/P1disc), whose tangent runs through every quadrature point's.
 // Last `Complementarity = weighted`, frozen and folded: the nodal conditions
 // on the weighted gap and slip, whose Λ rows are nonlinear in the slip of the
-// node's whole support.
+// node's whole support; also with the dual multiplier basis (Q1/P1 dual).
 
 #include <deal.II/base/mpi.h>
 
@@ -323,6 +323,16 @@ main(int argc, char *argv[])
               test<2>(state, quadrature, mu, generalized, conditions, 1e-3, label);
               test<3>(state, quadrature, mu, generalized, conditions, 1e-3, label);
             }
+  // the dual multiplier basis (ψ_j = Σ A_jk φ_k per face), weighted conditions
+  const std::string dual = "subsection Contact\n  set Complementarity = weighted\n"
+                           "  set Finite element pair = Q1/P1 dual\nend\n";
+  for (const State state : {State::stick, State::slip, State::mixed})
+    for (const bool generalized : {false, true})
+      if (!generalized || state != State::mixed)
+        {
+          test<2>(state, "Gauss", 0.3, generalized, dual, 1e-3, "dual ");
+          test<3>(state, "Gauss", 0.3, generalized, dual, 1e-3, "dual ");
+        }
   // F-bar's tangent (through the cell centre's gradient) and the mixed one
   // (through the projection from every quadrature point), with displacements
   // of 5 % of the cell size so that the finite-strain terms count
@@ -341,11 +351,12 @@ main(int argc, char *argv[])
   // the generalized Newton with a deformable master: the pairing (ξ, n, t_α)
   // linearised in the slave's and the master's DoFs, sticking and slipping,
   // with both conditions (every point is in contact: the statuses are not mixed)
-  for (const std::string &conditions : {std::string(), weighted})
+  for (const std::string &conditions : {std::string(), weighted, dual})
     for (const State state : {State::stick, State::slip})
       {
         const std::string label =
-            std::string("two bodies ") + (conditions.empty() ? "" : "weighted ");
+            std::string("two bodies ") +
+            (conditions.empty() ? "" : (conditions == dual ? "dual " : "weighted "));
         test<2>(state, "Gauss", 0.3, true, two_bodies<2>() + conditions, 1e-3, label, false);
         test<3>(state, "Gauss", 0.3, true, two_bodies<3>() + conditions, 1e-3, label, false);
       }

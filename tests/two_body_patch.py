@@ -23,7 +23,9 @@ Checked for the pair Q1/P1 and Q2/P1, with the slave on the finer side
 coarser side), on 1 and 2 MPI ranks; and on the same blocks meshed with
 triangles (the same interface nodes) for P1/P1, P2/P1 and P2/P2. Then the same
 with `Complementarity = weighted` (the conditions per node on the weighted
-gap), which must pass it as well. Last the 3D patch test
+gap), which must pass it as well, also with the dual multiplier bases
+(Q1/P1 dual, Q2/P2 dual: the multiplier field of λ_j = p is p, since the
+dual functions sum to one). Last the 3D patch test
 (prm/contact_patch_test_3d.prm, hexahedra, 8 x 6 graded faces against 10 x 10):
 the slave faces cut along the projected master faces, Q1/P1, Q2/P1 and Q2/P2,
 both roles, 1 and 2 ranks, weighted and pointwise; sigma_zz = -p in every cell."""
@@ -86,7 +88,9 @@ cases = [("Q1/P1", "upper_bottom", 1), ("Q1/P1", "lower_top", 1),
 cases = [case + ("pointwise",) for case in cases] + [
     ("Q1/P1", "upper_bottom", 1, "weighted"), ("Q1/P1", "lower_top", 2, "weighted"),
     ("Q2/P1", "upper_bottom", 2, "weighted"), ("Q2/P2", "lower_top", 1, "weighted"),
-    ("P1/P1", "upper_bottom", 2, "weighted"), ("P2/P2", "lower_top", 1, "weighted")]
+    ("P1/P1", "upper_bottom", 2, "weighted"), ("P2/P2", "lower_top", 1, "weighted"),
+    ("Q1/P1 dual", "upper_bottom", 1, "weighted"), ("Q1/P1 dual", "lower_top", 2, "weighted"),
+    ("Q2/P2 dual", "upper_bottom", 1, "weighted")]
 WEIGHTED = "\nsubsection Contact\n  set Complementarity = weighted\nend\n"
 # the P pairs on the same blocks meshed with triangles (Recombine removed: the same
 # interface nodes, non-matching)
@@ -140,6 +144,7 @@ def check_case(name, text, out, ranks, nodes, dim, measure):
 for pair, slave, ranks, mode in cases:
     cells = 10 if slave == "upper_bottom" else 8
     nodes = cells + 1 if pair[1] == "1" else 2 * cells + 1
+    pair_name = pair.replace("/", "").replace(" ", "-")
     text = (scene if slave == "upper_bottom" else swapped_scene).replace(PAIR, f"set Finite element pair  = {pair}")
     if pair.startswith("P"):
         text = text.replace(quadrilateral_geo, triangle_geo)
@@ -148,7 +153,7 @@ for pair, slave, ranks, mode in cases:
     if mode == "weighted":
         text += WEIGHTED
     check_case(f"{pair}, slave {slave}, {ranks} rank(s), {mode}", text,
-               os.path.join(workdir, f"{pair.replace('/', '')}-{slave}-np{ranks}-{mode}"), ranks, nodes, 2, length)
+               os.path.join(workdir, f"{pair_name}-{slave}-np{ranks}-{mode}"), ranks, nodes, 2, length)
 
 # 3D (prm/contact_patch_test_3d.prm): two 10 x 10 x 5 blocks, 8 x 6 graded faces
 # below, 10 x 10 above, after one global refinement; the slave faces are cut
@@ -161,13 +166,15 @@ swapped_3d = (scene_3d.replace(SLAVE, "set Contact boundary ids = lower_top")
               .replace(MASTER, "set Master boundary ids  = upper_bottom"))
 for pair, slave, ranks, mode in [("Q1/P1", "upper_bottom", 1, "weighted"), ("Q1/P1", "lower_top", 2, "weighted"),
                                  ("Q1/P1", "upper_bottom", 2, "pointwise"), ("Q2/P1", "lower_top", 1, "weighted"),
-                                 ("Q2/P2", "upper_bottom", 1, "pointwise")]:
+                                 ("Q2/P2", "upper_bottom", 1, "pointwise"), ("Q1/P1 dual", "lower_top", 2, "weighted"),
+                                 ("Q2/P2 dual", "upper_bottom", 1, "weighted")]:
     faces = (10, 10) if slave == "upper_bottom" else (8, 6)
-    degree = max(int(pair[1]), int(pair[-1]))  # the profile has the nodes of the richer space
+    degree = max(int(pair[1]), int(pair[4]))  # the profile has the nodes of the richer space
     nodes = (degree * faces[0] + 1) * (degree * faces[1] + 1)
     text = ((scene_3d if slave == "upper_bottom" else swapped_3d).replace(PAIR, f"set Finite element pair  = {pair}")
             .replace("set Complementarity      = weighted", f"set Complementarity = {mode}"))
     check_case(f"3D {pair}, slave {slave}, {ranks} rank(s), {mode}", text,
-               os.path.join(workdir, f"3d-{pair.replace('/', '')}-{slave}-np{ranks}-{mode}"), ranks, nodes, 3,
+               os.path.join(workdir, f"3d-{pair.replace('/', '').replace(' ', '-')}-{slave}-np{ranks}-{mode}"),
+               ranks, nodes, 3,
                length * length)
 check.finish()

@@ -21,10 +21,12 @@ namespace StabilizedLagrangian
       LagrangeFacePair(const unsigned int displacement_degree,
                        const unsigned int multiplier_degree,
                        const bool         continuous_multiplier,
-                       const bool         coarser_mesh = false)
+                       const bool         coarser_mesh = false,
+                       const bool         dual_basis   = false)
           : FEPair<dim>(displacement_degree, multiplier_degree)
           , continuous(continuous_multiplier)
           , coarse(coarser_mesh)
+          , dual(dual_basis)
       {
       }
 
@@ -48,8 +50,14 @@ namespace StabilizedLagrangian
         return coarse;
       }
 
+      bool
+      dual_multiplier() const override
+      {
+        return dual;
+      }
+
     private:
-      const bool continuous, coarse;
+      const bool continuous, coarse, dual;
     };
 
     SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
@@ -78,6 +86,30 @@ namespace StabilizedLagrangian
         "boundary mesh (inf-sup stable: the multiplier space is the displacement trace)",
         2,
         2,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q1/P1 dual",
+        "Q1 displacement, multipliers in the dual (biorthogonal) basis of the piecewise-linear "
+        "ones on the displacement's boundary mesh: the multiplier mass matrix is diagonal, as in "
+        "dual mortar methods (inf-sup stable). Needs Contact/Complementarity = weighted",
+        1,
+        1,
+        true,
+        false,
+        true);
+    SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
+        FEPair,
+        LagrangeFacePair,
+        "Q2/P2 dual",
+        "Q2 displacement, multipliers in the dual basis of the piecewise-quadratic ones (built "
+        "directly on the 3-node edges and 9-node faces, whose basis functions all have positive "
+        "integrals; inf-sup stable). Needs Contact/Complementarity = weighted",
+        2,
+        2,
+        true,
+        false,
         true);
     SL_REGISTER_PLUGIN_WITHOUT_PARAMETERS(
         FEPair,

@@ -317,7 +317,7 @@ namespace StabilizedLagrangian
             ContactKinematics<dim>  k     = evaluator.kinematics(q);
             evaluate_point_state(state, k, refresh);
             local.set_shapes(*evaluator.u_values,
-                             *evaluator.m_values,
+                             evaluator.multiplier_shapes(),
                              q,
                              *partner,
                              state.pairing,

@@ -24,10 +24,11 @@ namespace StabilizedLagrangian
         for (const unsigned int f : cell->face_indices())
           if (is_contact_face(cell, f))
             {
-              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr, nullptr});
+              contact_faces.push_back(ContactFace{cell, f, n_points, nullptr, nullptr, nullptr});
               n_points += contact_quadrature.size();
             }
     set_consistent_nodal_weights();
+    set_dual_multiplier_basis();
     contact_states.assign(n_points, ContactPointState<dim>());
     if (!friction_law->threshold_depends_on_pressure())
       for (auto &state : contact_states)
@@ -152,6 +153,41 @@ namespace StabilizedLagrangian
         m_dofs.push_back(problem.n_u + all_m[i]);
         m_coefficients.push_back(ghosted(problem.n_u + all_m[i]));
       }
+    // ψ_a at the points: φ_a, or with a dual basis Σ_r A_pr φ_(r, c) (p the
+    // node of a, c its component; the nodes in ascending base index)
+    const unsigned int n_m = m_local.size();
+    m_shapes.reinit(n_m, u_now.size());
+    const FullMatrix<double> *dual = nodal_coefficients ? nullptr : face.dual_basis.get();
+    std::vector<unsigned int> node_of(n_m);
+    std::vector<std::vector<unsigned int>> of_node;
+    if (dual)
+      {
+        std::map<unsigned int, unsigned int> position;
+        for (const unsigned int i : m_local)
+          position.emplace(problem.fe_m->system_to_component_index(i).second, 0);
+        unsigned int p = 0;
+        for (auto &entry : position)
+          entry.second = p++;
+        of_node.assign(position.size(), std::vector<unsigned int>(problem.fe_m->n_components()));
+        for (unsigned int a = 0; a < n_m; ++a)
+          {
+            const auto [component, base]   = problem.fe_m->system_to_component_index(m_local[a]);
+            node_of[a]                     = position[base];
+            of_node[node_of[a]][component] = a;
+          }
+      }
+    for (unsigned int a = 0; a < n_m; ++a)
+      for (unsigned int q = 0; q < u_now.size(); ++q)
+        if (!dual)
+          m_shapes(a, q) = m_values->shape_value(m_local[a], q);
+        else
+          {
+            const unsigned int c     = problem.fe_m->system_to_component_index(m_local[a]).first;
+            double             value = 0.;
+            for (unsigned int r = 0; r < of_node.size(); ++r)
+              value += (*dual)(node_of[a], r) * m_values->shape_value(m_local[of_node[r][c]], q);
+            m_shapes(a, q) = value;
+          }
 
     const FiniteElement<dim> &fe = *problem.fe_u;
     for (unsigned int q = 0; q < u_now.size(); ++q)
@@ -179,12 +215,11 @@ namespace StabilizedLagrangian
     k.JxW            = weights ? (*weights)[q] : u_values->JxW(q);
     for (unsigned int a = 0; a < m_local.size(); ++a)
       {
-        const unsigned int c   = problem.fe_m->system_to_component_index(m_local[a]).first;
-        const double       psi = m_values->shape_value(m_local[a], q);
+        const unsigned int c = problem.fe_m->system_to_component_index(m_local[a]).first;
         if (c == 0)
-          k.contact_pressure += m_coefficients[a] * psi;
+          k.contact_pressure += m_coefficients[a] * m_shapes(a, q);
         else
-          k.semi_multiplier[c - 1] += m_coefficients[a] * psi;
+          k.semi_multiplier[c - 1] += m_coefficients[a] * m_shapes(a, q);
       }
     return k;
   }
@@ -223,8 +258,12 @@ namespace StabilizedLagrangian
     for (const auto &face : contact_faces)
       {
         ends.reinit(face, ghosted_solution);
-        ContactFace cut_face{
-            face.cell, face.face_no, static_cast<unsigned int>(states.size()), nullptr, nullptr};
+        ContactFace cut_face{face.cell,
+                             face.face_no,
+                             static_cast<unsigned int>(states.size()),
+                             nullptr,
+                             nullptr,
+                             face.dual_basis};
         cut_face.segments                   = face_segments(ends);
         const Quadrature<dim - 1> &old_rule = face_quadrature(face);
         const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);

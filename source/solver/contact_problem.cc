@@ -200,6 +200,17 @@ namespace StabilizedLagrangian
       throw InputError(pair + " is for quadrilaterals / hexahedra; the mesh has " +
                        (dim == 2 ? "triangles" : "tetrahedra") +
                        ": use a P pair (P1/P1, P2/P1, P2/P2, or P1/P2 to see an unstable one).");
+    if (fe_pair->dual_multiplier() && !weighted_complementarity())
+      throw InputError(pair +
+                       " has dual multipliers, whose conditions hold node by node: set "
+                       "Contact/Complementarity = weighted, or choose the pair without 'dual'.");
+    if (fe_pair->dual_multiplier() &&
+        contact_parameters.quadrature == Parameters::ContactQuadrature::gauss_lobatto)
+      throw InputError(pair +
+                       " and Contact/Contact quadrature = Gauss-Lobatto: the dual basis "
+                       "is biorthogonal under exact integration, while the nodal quadrature "
+                       "lumps the multiplier mass (the standard basis is then its own dual). "
+                       "Use Contact quadrature = Gauss, or the pair without 'dual'.");
     if (!simplex_mesh())
       return;
     for (const auto &material : materials)

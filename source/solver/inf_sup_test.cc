@@ -180,7 +180,7 @@ namespace StabilizedLagrangian
                 const auto row = normal_row.find(evaluator.m_dofs[a]);
                 if (row == normal_row.end())
                   continue;
-                const double psi_a = evaluator.m_values->shape_value(evaluator.m_local[a], q);
+                const double psi_a = evaluator.psi(a, q);
                 for (unsigned int j = 0; j < n_dofs; ++j)
                   cell_row(j) =
                       w * psi_a * evaluator.u_values->shape_value(j, q) * normal[component[j]];
@@ -190,8 +190,7 @@ namespace StabilizedLagrangian
                   {
                     const auto column = normal_row.find(evaluator.m_dofs[b]);
                     if (column != normal_row.end())
-                      gram_m(row->second, column->second) +=
-                          h * w * psi_a * evaluator.m_values->shape_value(evaluator.m_local[b], q);
+                      gram_m(row->second, column->second) += h * w * psi_a * evaluator.psi(b, q);
                   }
               }
           }

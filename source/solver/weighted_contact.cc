@@ -16,6 +16,71 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   void
+  ContactProblem<dim>::set_dual_multiplier_basis()
+  {
+    // A = D M⁻¹ on each face, M_pr = ∫_F φ_p φ_r, D_pp = ∫_F φ_p = Σ_r M_pr,
+    // on the reference face (the multiplier lives there): then
+    // ∫_F ψ_p φ_r = D_pp δ_pr (Wohlmuth 2000; Popp, Gitterle, Gee, Wall 2010).
+    // M with the contact quadrature (Gauss, degree + 1 points: exact for
+    // φ_p φ_r J on plane faces), so that the assembled ∫ψ_j φ_k is diagonal
+    // also on curved faces; on segmented faces the segments' rule is exact
+    // where the face is plane.
+    if (!fe_pair->dual_multiplier())
+      return;
+    FEFaceValues<dim> values(*fe_m, contact_quadrature, update_values | update_JxW_values);
+    for (auto &face : contact_faces)
+      {
+        values.reinit(multiplier_cell(face.cell), face.face_no);
+        // the face's nodes: λ_n's shape functions, ascending base index
+        const std::vector<unsigned int> &local = multiplier_face_dofs(face.face_no);
+        std::vector<unsigned int>        node_shapes;
+        for (const auto &[base, node] : multiplier_nodes(
+                 local, std::vector<types::global_dof_index>(local.begin(), local.end())))
+          node_shapes.push_back(static_cast<unsigned int>(node[0]));
+        const unsigned int n = node_shapes.size();
+        FullMatrix<double> mass(n, n);
+        for (unsigned int q = 0; q < contact_quadrature.size(); ++q)
+          for (unsigned int p = 0; p < n; ++p)
+            for (unsigned int r = 0; r < n; ++r)
+              mass(p, r) += values.shape_value(node_shapes[p], q) *
+                            values.shape_value(node_shapes[r], q) * values.JxW(q);
+        Vector<double> row_sums(n);
+        for (unsigned int p = 0; p < n; ++p)
+          for (unsigned int r = 0; r < n; ++r)
+            row_sums(p) += mass(p, r);
+        auto dual = std::make_shared<FullMatrix<double>>(n, n);
+        dual->invert(mass);
+        for (unsigned int p = 0; p < n; ++p)
+          for (unsigned int r = 0; r < n; ++r)
+            (*dual)(p, r) *= row_sums(p);
+        face.dual_basis = dual;
+      }
+  }
+
+  template <int dim>
+  std::map<std::pair<types::global_dof_index, types::global_dof_index>, double>
+  ContactProblem<dim>::multiplier_mass() const
+  {
+    std::map<std::pair<types::global_dof_index, types::global_dof_index>, double> mass;
+    FaceEvaluator run_basis(*this, contact_quadrature), nodal_basis(*this, contact_quadrature);
+    nodal_basis.use_nodal_coefficients();
+    for (const auto &face : contact_faces)
+      {
+        run_basis.reinit(face, ghosted_solution);
+        nodal_basis.reinit(face, ghosted_solution);
+        for (unsigned int q = 0; q < run_basis.n_points(); ++q)
+          for (unsigned int a = 0; a < run_basis.m_dofs.size(); ++a)
+            for (unsigned int b = 0; b < run_basis.m_dofs.size(); ++b)
+              if (fe_m->system_to_component_index(run_basis.m_local[a]).first == 0 &&
+                  fe_m->system_to_component_index(run_basis.m_local[b]).first == 0)
+                mass[{run_basis.m_dofs[a], run_basis.m_dofs[b]}] +=
+                    run_basis.psi(a, q) * nodal_basis.psi(b, q) * run_basis.kinematics(q).JxW;
+      }
+    return mass;
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::setup_nodal_conditions()
   {
     nodal = NodalConditions();
@@ -114,8 +179,7 @@ namespace StabilizedLagrangian
             for (unsigned int a = 0; a < n_m; ++a)
               {
                 const unsigned int c = fe_m->system_to_component_index(evaluator.m_local[a]).first;
-                const double       psi_w =
-                    evaluator.m_values->shape_value(evaluator.m_local[a], q) * k.JxW;
+                const double       psi_w = evaluator.psi(a, q) * k.JxW;
                 face_weights(a) += psi_w;
                 face_integrals(a) += psi_w * (c == 0 ? gap : slip[c - 1]);
               }
@@ -253,7 +317,7 @@ namespace StabilizedLagrangian
     for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
       if (fe_m->system_to_component_index(evaluator.m_local[a]).first == 0)
         {
-          const double psi = evaluator.m_values->shape_value(evaluator.m_local[a], q);
+          const double psi = evaluator.psi(a, q);
           if (psi > largest)
             {
               largest = psi;
@@ -351,8 +415,8 @@ namespace StabilizedLagrangian
               {
                 const unsigned int c = fe_m->system_to_component_index(evaluator.m_local[a]).first;
                 if (c > 0)
-                  traction[c - 1] += evaluator.m_values->shape_value(evaluator.m_local[a], q) *
-                                     nodes.of_multiplier[a]->multiplier_traction()[c - 1];
+                  traction[c - 1] +=
+                      evaluator.psi(a, q) * nodes.of_multiplier[a]->multiplier_traction()[c - 1];
               }
             const double lambda = k.contact_pressure;
             if (lambda > negligible_pressure)
@@ -436,6 +500,9 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                                        \
+  template void ContactProblem<dim>::set_dual_multiplier_basis();                                                  \
+  template std::map<std::pair<types::global_dof_index, types::global_dof_index>, double>                           \
+                        ContactProblem<dim>::multiplier_mass() const;                                              \
   template void         ContactProblem<dim>::setup_nodal_conditions();                                             \
   template void         ContactProblem<dim>::update_nodal_integrals(bool);                                         \
   template unsigned int ContactProblem<dim>::update_nodal_statuses(bool);                                          \

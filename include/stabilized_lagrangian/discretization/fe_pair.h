@@ -66,6 +66,19 @@ namespace StabilizedLagrangian
         return false;
       }
 
+      /**
+       * @brief Whether the multiplier basis is the dual (biorthogonal) one:
+       * on each contact face ψ_j = Σ_k A_jk φ_k with A = D M⁻¹ (M the face's
+       * multiplier mass matrix, D its row sums), so ∫_F ψ_j φ_k = δ_jk ∫_F φ_j
+       * and the global multiplier mass matrix ∫ψ_j φ_k is diagonal
+       * (doc/formulation.md, "Dual multipliers").
+       */
+      virtual bool
+      dual_multiplier() const
+      {
+        return false;
+      }
+
       /** @brief Whether the pair is for triangles / tetrahedra (P_k) rather than Q_k cells. */
       virtual bool
       simplex() const

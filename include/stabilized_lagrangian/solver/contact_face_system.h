@@ -98,7 +98,7 @@ namespace StabilizedLagrangian
        */
       void
       set_shapes(const FEFaceValues<dim>     &u_values,
-                 const FEFaceValues<dim>     &m_values,
+                 const Table<2, double>      &m_shapes,
                  const unsigned int           q,
                  const Contact::Partner<dim> &partner,
                  const Contact::Pairing<dim> &pairing,
@@ -131,7 +131,7 @@ namespace StabilizedLagrangian
         if (step_increment)
           pairing_variations(pairing, *step_increment, gap);
         for (unsigned int a = 0; a < n_m; ++a)
-          psi[a] = m_values.shape_value(m_local[a], q);
+          psi[a] = m_shapes(a, q);
       }
 
       /**

@@ -250,6 +250,16 @@ namespace StabilizedLagrangian
     freeze_nodal_conditions(const std::function<bool(unsigned int)> &in_contact,
                             const double                             threshold);
 
+    /**
+     * @brief The multiplier mass matrix M_jk = ∫_Γc ψ_j φ_k of this rank's
+     * contact faces (weighted_contact.cc), per pair of multiplier nodes (their
+     * λ_n DoFs): ψ_j the run's multiplier basis, φ_k the standard (nodal) one.
+     * Diagonal, D_jj = ∫φ_j, with a dual pair. The entries of nodes shared
+     * with another rank are this rank's part.
+     */
+    std::map<std::pair<types::global_dof_index, types::global_dof_index>, double>
+    multiplier_mass() const;
+
     /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row
      * (dofs.cc). */
     std::vector<std::pair<types::global_dof_index, unsigned int>>
@@ -299,6 +309,12 @@ namespace StabilizedLagrangian
        * "Contact quadrature"); null elsewhere, where both agree.
        */
       std::shared_ptr<const std::vector<double>> nodal_weights;
+      /**
+       * With a dual multiplier basis (FEPair::dual_multiplier()): the face's
+       * A = D M⁻¹, ψ_p = Σ_r A_pr φ_r over the face's nodes (ascending base
+       * index of the multiplier element); null: the standard basis.
+       */
+      std::shared_ptr<const FullMatrix<double>> dual_basis;
     };
     /** The contact points of @p face. */
     const Quadrature<dim - 1> &
@@ -323,6 +339,15 @@ namespace StabilizedLagrangian
       FaceEvaluator(const ContactProblem      &problem,
                     const Quadrature<dim - 1> &quadrature,
                     const bool                 follow_segments = true);
+      /**
+       * Evaluate the multipliers in the standard basis even with a dual one:
+       * at a node this gives its coefficient λ_j (the output).
+       */
+      void
+      use_nodal_coefficients()
+      {
+        nodal_coefficients = true;
+      }
       void
       reinit(const ContactFace &face, const TrilinosWrappers::MPI::Vector &ghosted_solution);
       ContactKinematics<dim>
@@ -341,6 +366,18 @@ namespace StabilizedLagrangian
       std::vector<types::global_dof_index> m_dofs;
       /** cell-local indices of those DoFs in the multiplier element */
       std::vector<unsigned int> m_local;
+      /** the basis function ψ of multiplier @p a (index in m_dofs) at point @p q */
+      double
+      psi(const unsigned int a, const unsigned int q) const
+      {
+        return m_shapes(a, q);
+      }
+      /** all of them, (a, q) */
+      const Table<2, double> &
+      multiplier_shapes() const
+      {
+        return m_shapes;
+      }
 
     private:
       const ContactProblem     &problem;
@@ -352,6 +389,8 @@ namespace StabilizedLagrangian
       const std::vector<double>  *weights = nullptr;
       std::vector<Tensor<1, dim>> u_now, u_start;
       std::vector<double>         m_coefficients;
+      Table<2, double>            m_shapes;
+      bool                        nodal_coefficients = false;
     };
 
     /**
@@ -393,6 +432,9 @@ namespace StabilizedLagrangian
     {
       return contact_parameters.complementarity == Parameters::Complementarity::weighted;
     }
+    /** ContactFace::dual_basis of every contact face, with a dual pair. */
+    void
+    set_dual_multiplier_basis();
     /** Size the nodal vectors, find the owned nodes; refuse constrained multipliers. */
     void
     setup_nodal_conditions();
