@@ -14,7 +14,11 @@ square of the nodal errors over the nodes within 1.5 a. Surface L2
 (surface_l2_error): in 2D the L2 error above; in 3D the L2 integral within
 1.5 a of the nodal values interpolated linearly on the Delaunay triangles of
 the nodes (the nodal root mean square weighs the nodes of a graded mesh by
-their number, not their area, and leaves out the error between them)."""
+their number, not their area, and leaves out the error between them). Fitted
+half-width (fitted_half_width_error): the a of the least-squares fit of
+q sqrt(1 - r^2/a^2) to every node, q and a free (golden-section search in a,
+q linear), which uses the whole profile rather than the two nodes around the
+edge, so it is not bounded below by h/2."""
 import math
 import os
 import sys
@@ -86,8 +90,28 @@ def hertz_errors(dim, P, profile, E=200000.0, nu=0.3, R=100.0):
         num = sum((p - exact(x)) ** 2 for x, p in near)
         den = sum(exact(x) ** 2 for x, _ in near)
     surface = math.sqrt(num / den) if dim == 2 else surface_l2_error(profile, exact, 1.5 * a_h)
+    a_fit = fitted_half_width(pts, a_h)
     return {"h_mm": h, "half_width_error": abs(a - a_h) / a_h, "peak_error": abs(p0 - p0_h) / p0_h,
-            "l2_error": math.sqrt(num / den), "surface_l2_error": surface, "a_mm": a, "a_hertz_mm": a_h}
+            "l2_error": math.sqrt(num / den), "surface_l2_error": surface, "a_mm": a, "a_hertz_mm": a_h,
+            "fitted_half_width_error": abs(a_fit - a_h) / a_h, "a_fit_mm": a_fit}
+
+
+def fitted_half_width(pts, a_guess):
+    """The a of the least-squares fit of q sqrt(1 - r^2/a^2) to the (r, p) of pts, q and a free."""
+    def misfit(a):
+        shape = [math.sqrt(max(0.0, 1 - (r / a) ** 2)) for r, _ in pts]
+        norm = sum(f * f for f in shape)
+        q = sum(f * p for f, (_, p) in zip(shape, pts)) / norm if norm > 0 else 0.0
+        return sum((q * f - p) ** 2 for f, (_, p) in zip(shape, pts))
+    low, high = 0.5 * a_guess, 1.5 * a_guess
+    ratio = (math.sqrt(5) - 1) / 2
+    for _ in range(80):
+        left, right = high - ratio * (high - low), low + ratio * (high - low)
+        if misfit(left) < misfit(right):
+            high = right
+        else:
+            low = left
+    return 0.5 * (low + high)
 
 
 def surface_l2_error(profile, exact, radius):

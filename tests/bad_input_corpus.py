@@ -289,6 +289,9 @@ text_case("dual pair, nodal quadrature",
           scene(settings=[DUAL, ("Contact/Complementarity", "weighted"),
                           ("Contact/Contact quadrature", "Gauss-Lobatto")]), "Contact quadrature = Gauss")
 
+text_case("two balls touching", scene(settings=[("Geometry/Model", "two balls"),
+                                                ("Geometry/two balls/Initial gap", "0")]), "Initial gap")
+
 # --- Gmsh .msh files
 for name, mesh, expect in (
         ("empty.msh", "", "is empty"),

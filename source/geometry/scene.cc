@@ -7,6 +7,7 @@
 
 #include <stabilized_lagrangian/geometry/scene.h>
 
+#include <cmath>
 #include <functional>
 
 namespace StabilizedLagrangian
@@ -81,6 +82,53 @@ namespace StabilizedLagrangian
         for (const auto id : flat.get_manifold_ids())
           if (id != numbers::flat_manifold_id)
             triangulation.set_manifold(id, flat.get_manifold(id));
+      }
+
+      /**
+       * In 3D, the children of a refined face all join the contact zone
+       * (boundary id @p zone) when one of them is in it: where the zone ended
+       * inside a refined face, a hanging vertex of Γc would be constrained to
+       * a vertex off Γc, which has no multiplier. (In 2D the boundary has no
+       * hanging vertices.)
+       */
+      template <int dim>
+      void
+      close_contact_zone(Triangulation<dim> &triangulation, const types::boundary_id zone)
+      {
+        const std::function<void(const typename Triangulation<dim>::face_iterator &)> join =
+            [&join, zone](const typename Triangulation<dim>::face_iterator &face) {
+              face->set_boundary_id(zone);
+              if (face->has_children())
+                for (unsigned int c = 0; c < face->n_children(); ++c)
+                  join(face->child(c));
+            };
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->level() > 0)
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == zone)
+                join(cell->parent()->face(f));
+      }
+
+      /** The ball parameters shared by `half ball` and `two balls`. */
+      void
+      declare_ball_parameters(ParameterHandler &prm, const std::string &radius_documentation)
+      {
+        prm.declare_entry("Radius", "100", Patterns::Double(), "Radius R (mm), > 0.");
+        prm.declare_entry(
+            "Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
+        prm.declare_entry("Local refinements",
+                          "3",
+                          Patterns::Integer(0, 12),
+                          "Refinements of the cells within `Local refinement radius` of the "
+                          "contact point, after the uniform ones.");
+        prm.declare_entry(
+            "Local refinement radius", "30", Patterns::Double(), radius_documentation);
+        prm.declare_entry("Contact zone radius",
+                          "20",
+                          Patterns::Double(),
+                          "Curved faces within this distance (mm) of the contact point form "
+                          "the candidate contact surface. When it is larger than the "
+                          "local refinement radius, the contact mesh has hanging nodes.");
       }
     } // namespace
 
@@ -197,24 +245,8 @@ namespace StabilizedLagrangian
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("Radius", "100", Patterns::Double(), "Radius R (mm), > 0.");
-        prm.declare_entry(
-            "Global refinements", "3", Patterns::Integer(0, 12), "Uniform refinements.");
-        prm.declare_entry("Local refinements",
-                          "3",
-                          Patterns::Integer(0, 12),
-                          "Refinements of the cells within `Local refinement radius` of the "
-                          "lowest point, after the uniform ones.");
-        prm.declare_entry("Local refinement radius",
-                          "30",
-                          Patterns::Double(),
-                          "Distance (mm) from the lowest point within which cells are refined.");
-        prm.declare_entry("Contact zone radius",
-                          "20",
-                          Patterns::Double(),
-                          "Curved faces within this distance (mm) of the lowest point form "
-                          "the candidate contact surface (id 2). When it is larger than the "
-                          "local refinement radius, the contact mesh has hanging nodes.");
+        declare_ball_parameters(
+            prm, "Distance (mm) from the contact point within which cells are refined.");
         declare_cell_shape(prm);
       }
 
@@ -275,31 +307,7 @@ namespace StabilizedLagrangian
                   face->set_boundary_id(0);
               }
         if (dim == 3)
-          close_contact_zone(triangulation);
-      }
-
-    private:
-      /**
-       * In 3D, the children of a refined face all join the contact zone when
-       * one of them is in it: where the zone ended inside a refined face, a
-       * hanging vertex of Γc would be constrained to a vertex off Γc, which
-       * has no multiplier. (In 2D the boundary has no hanging vertices.)
-       */
-      static void
-      close_contact_zone(Triangulation<dim> &triangulation)
-      {
-        const std::function<void(const typename Triangulation<dim>::face_iterator &)> join =
-            [&join](const typename Triangulation<dim>::face_iterator &face) {
-              face->set_boundary_id(2);
-              if (face->has_children())
-                for (unsigned int c = 0; c < face->n_children(); ++c)
-                  join(face->child(c));
-            };
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->level() > 0)
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == 2)
-                join(cell->parent()->face(f));
+          close_contact_zone(triangulation, 2);
       }
 
     private:
@@ -307,6 +315,153 @@ namespace StabilizedLagrangian
       const unsigned int global_refinements, local_refinements;
       const double       refinement_radius, contact_radius;
       const bool         simplex;
+    };
+
+    /**
+     * @brief Two equal elastic balls (3D) or cylinders (2D, plane strain) of
+     * radius R pressed together, as a symmetric model: the quarter of each
+     * ball on x ≥ 0, y ≥ 0 (3D), the half of each cylinder on x ≥ 0 (2D). The
+     * lower body is the upper half of the ball centred at (0, −R) (0, 0, −R),
+     * its pole at the origin; the upper body the lower half of the ball
+     * centred `Initial gap` above the pole plus R, its pole at the gap. The
+     * bodies share no vertex (a positive gap keeps the poles apart).
+     * Boundaries (ids and names): 2 upper_contact and 7 lower_contact (the
+     * curved faces within `Contact zone radius` of the poles), 0 the rest of
+     * the curved faces, 3 upper_top (the upper body's flat face), 6
+     * lower_bottom, 4 symmetry_x (x = 0), 5 symmetry_y (y = 0, 3D). Bodies:
+     * material ids 1 upper, 2 lower.
+     */
+    template <int dim> class TwoBalls : public Interface<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        declare_ball_parameters(prm,
+                                "Distance (mm) from the contact point within which the last "
+                                "local refinement refines; each earlier one refines within "
+                                "twice the distance of the next (a geometric grading).");
+        prm.declare_entry("Initial gap",
+                          "0.01",
+                          Patterns::Double(),
+                          "Distance (mm) between the poles before loading, > 0.");
+      }
+
+      explicit TwoBalls(const ParameterHandler &prm)
+          : radius(prm.get_double("Radius"))
+          , gap(prm.get_double("Initial gap"))
+          , global_refinements(prm.get_integer("Global refinements"))
+          , local_refinements(prm.get_integer("Local refinements"))
+          , refinement_radius(prm.get_double("Local refinement radius"))
+          , contact_radius(prm.get_double("Contact zone radius"))
+      {
+        if (!(radius > 0.))
+          throw InputError("Geometry/two balls/Radius must be > 0.");
+        if (!(gap > 0. && gap < radius))
+          throw InputError("Geometry/two balls/Initial gap must be > 0 (the poles of the two "
+                           "bodies must not share a vertex) and smaller than the radius.");
+      }
+
+      void
+      create_mesh(Triangulation<dim> &triangulation) const override
+      {
+        // each body: the quarter (3D: eighth) of a ball, curved manifold 0
+        Point<dim> lower_center, upper_center;
+        lower_center[dim - 1] = -radius;
+        upper_center[dim - 1] = radius + gap;
+        Triangulation<dim> lower, upper, both;
+        GridGenerator::quarter_hyper_ball(lower, lower_center, radius);
+        GridGenerator::quarter_hyper_ball(upper, Point<dim>(), radius);
+        // a rotation taking the upper body's orthant below its centre,
+        // (x, y) -> (y, -x) and (x, y, z) -> (y, x, -z), then the shift
+        GridTools::transform(
+            [&](const Point<dim> &p) {
+              Point<dim> q;
+              q[0] = p[1];
+              if (dim == 2)
+                q[1] = -p[0];
+              else
+                {
+                  q[1]       = p[0];
+                  q[dim - 1] = -p[dim - 1];
+                }
+              return q + upper_center;
+            },
+            upper);
+        for (const auto &cell : upper.active_cell_iterators())
+          {
+            cell->set_material_id(1);
+            for (const auto &face : cell->face_iterators())
+              if (face->manifold_id() == 0)
+                face->set_all_manifold_ids(1);
+          }
+        for (const auto &cell : lower.active_cell_iterators())
+          cell->set_material_id(2);
+        GridGenerator::merge_triangulations(upper, lower, both, 1e-12 * radius, true);
+        triangulation.copy_triangulation(both);
+        triangulation.set_manifold(0, SphericalManifold<dim>(lower_center));
+        triangulation.set_manifold(1, SphericalManifold<dim>(upper_center));
+        triangulation.refine_global(global_refinements);
+        Point<dim> contact_point;
+        contact_point[dim - 1] = gap / 2.;
+        for (unsigned int step = 0; step < local_refinements; ++step)
+          refine_near(triangulation,
+                      contact_point,
+                      refinement_radius * std::pow(2., local_refinements - 1 - step),
+                      1);
+
+        const double tolerance = 1e-8 * radius;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                const Point<dim> x          = face->center();
+                const bool       upper_body = cell->material_id() == 1;
+                Point<dim>       pole;
+                pole[dim - 1] = upper_body ? gap : 0.;
+                if (std::abs(x[0]) < tolerance)
+                  face->set_boundary_id(4);
+                else if (dim == 3 && std::abs(x[1]) < tolerance)
+                  face->set_boundary_id(5);
+                else if (std::abs(x[dim - 1] - upper_center[dim - 1]) < tolerance)
+                  face->set_boundary_id(3);
+                else if (std::abs(x[dim - 1] - lower_center[dim - 1]) < tolerance)
+                  face->set_boundary_id(6);
+                else if (x.distance(pole) < contact_radius)
+                  face->set_boundary_id(upper_body ? 2 : 7);
+                else
+                  face->set_boundary_id(0);
+              }
+        if (dim == 3)
+          {
+            close_contact_zone(triangulation, 2);
+            close_contact_zone(triangulation, 7);
+          }
+      }
+
+      std::map<std::string, types::boundary_id>
+      boundary_names() const override
+      {
+        std::map<std::string, types::boundary_id> names = {{"upper_contact", 2},
+                                                           {"lower_contact", 7},
+                                                           {"upper_top", 3},
+                                                           {"lower_bottom", 6},
+                                                           {"symmetry_x", 4}};
+        if (dim == 3)
+          names["symmetry_y"] = 5;
+        return names;
+      }
+
+      std::map<std::string, types::material_id>
+      body_names() const override
+      {
+        return {{"upper", 1}, {"lower", 2}};
+      }
+
+    private:
+      const double       radius, gap;
+      const unsigned int global_refinements, local_refinements;
+      const double       refinement_radius, contact_radius;
     };
 
     SL_REGISTER_PLUGIN(Interface,
@@ -318,6 +473,11 @@ namespace StabilizedLagrangian
                        "half ball",
                        "half disc / half ball touching y = 0 (z = 0) at the origin "
                        "(Hertz problem)");
+    SL_REGISTER_PLUGIN(Interface,
+                       TwoBalls,
+                       "two balls",
+                       "two equal balls (3D, quarter model) or cylinders (2D, half model) "
+                       "pressed together: Hertz between two deformable bodies");
 
   } // namespace Geometry
 } // namespace StabilizedLagrangian
