@@ -537,6 +537,36 @@ namespace StabilizedLagrangian
     LinearSolver::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
+      prm.declare_entry(
+          "Method",
+          "direct",
+          Patterns::Selection("direct|iterative"),
+          "direct: one sparse factorisation per Newton system (`Direct solver`). iterative: "
+          "GMRES with a block-triangular preconditioner, algebraic multigrid (Trilinos ML) on "
+          "the displacement block and the Schur complement with the displacement block's "
+          "diagonal on the multipliers (doc/formulation.md, \"Iterative linear solver\"); its "
+          "tolerance follows the Newton residual (`Forcing term`), and a system it does not "
+          "solve within `Maximum iterations` is solved by the direct solver instead.");
+      prm.declare_entry(
+          "Forcing term",
+          "Newton tolerance",
+          Patterns::Selection("Newton tolerance|Eisenstat-Walker"),
+          "Method = iterative: the relative GMRES tolerance of each Newton system. Newton "
+          "tolerance: a tenth of the reduction of the Newton criterion's measure that would "
+          "meet its tolerance in this iteration, so that a Newton loop whose statuses are "
+          "frozen (a linear problem) ends in the iterations of the direct solver. "
+          "Eisenstat-Walker: choice 2 of Eisenstat and Walker (1996), looser early in a "
+          "loop; it costs Newton iterations on these problems (doc/iterative_solver.md). "
+          "Both within [1e-10, Maximum forcing term].");
+      prm.declare_entry(
+          "Maximum forcing term",
+          "1e-3",
+          Patterns::Double(1e-14, 0.5),
+          "Method = iterative: the largest relative GMRES tolerance |b - J x| / |b|.");
+      prm.declare_entry("Maximum iterations",
+                        "300",
+                        Patterns::Integer(1, 100000),
+                        "Method = iterative: GMRES iterations per Newton system.");
       prm.declare_entry("Direct solver",
                         "Amesos_Mumps",
                         Patterns::Selection("Amesos_Klu|Amesos_Mumps|Amesos_Superludist"),
@@ -574,6 +604,10 @@ namespace StabilizedLagrangian
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
+      iterative            = prm.get("Method") == "iterative";
+      eisenstat_walker     = prm.get("Forcing term") == "Eisenstat-Walker";
+      maximum_forcing_term = prm.get_double("Maximum forcing term");
+      maximum_iterations   = prm.get_integer("Maximum iterations");
       direct_solver        = prm.get("Direct solver");
       null_pivot_detection = prm.get_bool("Null pivot detection");
       threads_per_rank     = prm.get_integer("Threads per rank");

@@ -218,7 +218,13 @@ namespace StabilizedLagrangian
     /** @brief `Linear solver` subsection. */
     struct LinearSolver
     {
+      /** one factorisation per Newton system, or GMRES with a block preconditioner */
+      bool         iterative = false;
       std::string  direct_solver;
+      double       maximum_forcing_term = 1e-3; ///< the largest relative GMRES tolerance
+      unsigned int maximum_iterations   = 300;  ///< GMRES iterations per Newton system
+      /** GMRES tolerance from Eisenstat–Walker, or from the Newton tolerance (default) */
+      bool         eisenstat_walker     = false;
       bool         null_pivot_detection = false; ///< MUMPS: solve singular systems
       unsigned int threads_per_rank     = 1;     ///< BLAS/OpenMP threads of each MPI rank
       int          workspace_increase   = 20;    ///< MUMPS ICNTL(14), percent

@@ -390,6 +390,19 @@ namespace StabilizedLagrangian
         std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver,
                                                       linear_solver_parameters.null_pivot_detection,
                                                       linear_solver_parameters.workspace_increase);
+    if (linear_solver_parameters.iterative)
+      {
+        // the AMG's near-null space: the displacement's translations
+        std::vector<std::vector<bool>> constant_modes;
+        DoFTools::extract_constant_modes(dof_handler_u, ComponentMask(dim, true), constant_modes);
+        iterative_solver = std::make_unique<LinearSolvers::BlockIterativeSolver>(
+            locally_owned,
+            n_u,
+            mpi_communicator,
+            constant_modes,
+            fe_pair->displacement_degree() > 1,
+            linear_solver_parameters.maximum_iterations);
+      }
     sparsity_ready = true;
   }
 

@@ -455,7 +455,12 @@ namespace StabilizedLagrangian
           << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps
           << "; in failed (cut) attempts: " << statistics.cumulative_failed_newton_iterations()
           << "; assemblies: " << work.assemblies - path_start_work.assemblies << " ("
-          << work.jacobians - path_start_work.jacobians << " with the Jacobian)\n"
+          << work.jacobians - path_start_work.jacobians << " with the Jacobian)";
+    if (iterative_solver)
+      block << "; GMRES iterations: " << work.krylov_iterations - path_start_work.krylov_iterations
+            << ", systems left to the direct solver: "
+            << work.iterative_fallbacks - path_start_work.iterative_fallbacks;
+    block << "\n"
           << "  wall time:  " << std::setprecision(1) << wall_time << " s";
     std::string separator = ": ";
     for (const auto &[section, seconds] : sections)
@@ -481,7 +486,9 @@ namespace StabilizedLagrangian
   {
     return WorkCounters{work.newton_iterations - path_start_work.newton_iterations,
                         work.assemblies - path_start_work.assemblies,
-                        work.jacobians - path_start_work.jacobians};
+                        work.jacobians - path_start_work.jacobians,
+                        work.krylov_iterations - path_start_work.krylov_iterations,
+                        work.iterative_fallbacks - path_start_work.iterative_fallbacks};
   }
 
   template <int dim>
@@ -503,6 +510,8 @@ namespace StabilizedLagrangian
            "estimated_relative_error,peak_memory_MiB,wall_time_s";
     if (inf_sup_checked())
       file << ",inf_sup_beta";
+    if (iterative_solver)
+      file << ",krylov_iterations,iterative_fallbacks";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
@@ -517,6 +526,8 @@ namespace StabilizedLagrangian
          << ',' << wall_time;
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
+    if (iterative_solver)
+      file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks;
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';

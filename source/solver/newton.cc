@@ -162,6 +162,8 @@ namespace StabilizedLagrangian
                                         const NewtonMeasure           &measured,
                                         TrilinosWrappers::MPI::Vector &update)
   {
+    if (measured.measure > 0.)
+      progress.needed_reduction = measured.tolerance / measured.measure;
     return may_iterate(stats, progress, measured) && solve_for_update(progress, update);
   }
 
@@ -212,10 +214,44 @@ namespace StabilizedLagrangian
       assemble_newton_system(true);
     update.reinit(locally_owned, mpi_communicator);
     system_rhs *= -1.;
-    bool solved;
+    bool solved = false;
     {
       TimerOutput::Scope scope(timer, "linear solve");
-      solved = direct_solver->solve(system_matrix, update, system_rhs);
+      if (iterative_solver)
+        {
+          // a tenth of the reduction that meets the Newton tolerance now, or
+          // Eisenstat–Walker (1996) choice 2: η_k = γ (|F_k| / |F_k−1|)²,
+          // safeguarded by γ η_k−1² where that is above 0.1
+          const double maximum = linear_solver_parameters.maximum_forcing_term;
+          double       forcing = 0.1 * progress.needed_reduction;
+          if (linear_solver_parameters.eisenstat_walker)
+            {
+              const double residual = residual_norm();
+              forcing               = maximum;
+              if (progress.iteration > 0 && std::isfinite(progress.previous_residual) &&
+                  progress.previous_residual > 0.)
+                {
+                  const double gamma = 0.9;
+                  forcing            = gamma * std::pow(residual / progress.previous_residual, 2);
+                  if (gamma * progress.forcing_term * progress.forcing_term > 0.1)
+                    forcing =
+                        std::max(forcing, gamma * progress.forcing_term * progress.forcing_term);
+                }
+            }
+          forcing               = std::clamp(forcing, 1e-10, maximum);
+          progress.forcing_term = forcing;
+          solved =
+              iterative_solver->solve(system_matrix, update, system_rhs, residual_scaling, forcing);
+          work.krylov_iterations += iterative_solver->last_iterations();
+          if (!solved)
+            {
+              pcout << "  Newton: " << iterative_solver->last_error()
+                    << "; this system is solved by the direct solver\n";
+              ++work.iterative_fallbacks;
+            }
+        }
+      if (!solved)
+        solved = direct_solver->solve(system_matrix, update, system_rhs);
     }
     ++work.newton_iterations;
     if (!direct_solver->last_retry().empty())

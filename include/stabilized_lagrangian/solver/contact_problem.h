@@ -33,6 +33,7 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
@@ -94,9 +95,11 @@ namespace StabilizedLagrangian
    */
   struct WorkCounters
   {
-    unsigned long newton_iterations = 0; ///< Newton iterations (one linear solve each)
-    unsigned long assemblies        = 0; ///< residual assemblies, with or without the Jacobian
-    unsigned long jacobians         = 0; ///< assemblies with the Jacobian
+    unsigned long newton_iterations   = 0; ///< Newton iterations (one linear solve each)
+    unsigned long assemblies          = 0; ///< residual assemblies, with or without the Jacobian
+    unsigned long jacobians           = 0; ///< assemblies with the Jacobian
+    unsigned long krylov_iterations   = 0; ///< GMRES iterations (Linear solver/Method = iterative)
+    unsigned long iterative_fallbacks = 0; ///< systems GMRES left to the direct solver
   };
 
   /** @brief One row of the numerical inf-sup test (ContactProblem::run_inf_sup_test). */
@@ -726,6 +729,10 @@ namespace StabilizedLagrangian
       /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
       double update_energy     = std::numeric_limits<double>::infinity();
       double previous_residual = std::numeric_limits<double>::infinity();
+      /** the relative tolerance of the last iterative linear solve (Eisenstat–Walker) */
+      double forcing_term = 0.;
+      /** the criterion's tolerance over its measure at the iterate: the reduction still needed */
+      double needed_reduction = 1.;
       /** whether the last assembly, at the iterate, has the Jacobian */
       bool           jacobian_current = true;
       const bool     newton_decides_statuses;
@@ -1522,11 +1529,13 @@ namespace StabilizedLagrangian
 
     TrilinosWrappers::SparseMatrix               system_matrix;
     std::unique_ptr<LinearSolvers::DirectSolver> direct_solver;
-    TrilinosWrappers::MPI::Vector                system_rhs;
-    TrilinosWrappers::MPI::Vector                solution; ///< owned
-    TrilinosWrappers::MPI::Vector ghosted_solution;        ///< relevant, kept in sync with solution
-    TrilinosWrappers::MPI::Vector step_start;              ///< relevant, solution at the step start
-    TrilinosWrappers::MPI::Vector residual_scaling;        ///< 1, r_n or r_t per owned row
+    /** `Linear solver/Method = iterative`; null with the direct solver */
+    std::unique_ptr<LinearSolvers::BlockIterativeSolver> iterative_solver;
+    TrilinosWrappers::MPI::Vector                        system_rhs;
+    TrilinosWrappers::MPI::Vector                        solution; ///< owned
+    TrilinosWrappers::MPI::Vector ghosted_solution; ///< relevant, kept in sync with solution
+    TrilinosWrappers::MPI::Vector step_start;       ///< relevant, solution at the step start
+    TrilinosWrappers::MPI::Vector residual_scaling; ///< 1, r_n or r_t per owned row
     /** owned: the nodal internal forces ∫σ:∇φ_i of the last assembly (reactions included) */
     TrilinosWrappers::MPI::Vector internal_force;
     /** the contact terms of the residual, without constraints (for the reactions) */

@@ -1,0 +1,111 @@
+#pragma once
+
+#include <deal.II/base/index_set.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace StabilizedLagrangian
+{
+  namespace LinearSolvers
+  {
+    using namespace dealii;
+
+    /**
+     * @brief GMRES with a block-triangular preconditioner for the Newton
+     * systems `Linear solver/Method = iterative` (doc/formulation.md,
+     * "Iterative linear solver").
+     *
+     * The Newton matrix, displacements first and multipliers after them,
+     *
+     *     J = [ K  B ]      P = [ K̂  B ]
+     *         [ C  D ],         [ 0  Ŝ ],    Ŝ = D − C diag(K)⁻¹ B,
+     *
+     * is solved by right-preconditioned GMRES with P: K̂⁻¹ is one V-cycle of
+     * algebraic multigrid (Trilinos ML) on K with the translations as its
+     * near-null space, Ŝ the Schur complement with K replaced by its
+     * diagonal, a sparse matrix on the multipliers only (they live on Γc),
+     * factorised by a direct solver. With K̂ = K and Ŝ the exact Schur
+     * complement GMRES would converge in two iterations (Murphy, Golub and
+     * Wathen 2000); the approximations trade iterations for cost.
+     */
+    class BlockIterativeSolver
+    {
+    public:
+      /**
+       * @param owned the locally owned rows of the Newton matrix
+       * @param n_u the number of displacement DoFs (the first block)
+       * @param constant_modes the displacement's constant modes per component
+       *   (DoFTools::extract_constant_modes), over its locally owned DoFs
+       * @param higher_order_elements quadratic displacements (the AMG's setting)
+       * @param max_iterations GMRES iterations before the solve is declared failed
+       */
+      BlockIterativeSolver(const IndexSet                       &owned,
+                           const types::global_dof_index         n_u,
+                           const MPI_Comm                        communicator,
+                           const std::vector<std::vector<bool>> &constant_modes,
+                           const bool                            higher_order_elements,
+                           const unsigned int                    max_iterations);
+      ~BlockIterativeSolver();
+
+      /**
+       * @brief Solve J x = b to |W (b − J x)| ≤ @p relative_tolerance |W b|,
+       * W = diag(@p row_weights) (the Newton residual's scaling: 1 on the
+       * displacement rows, r_n and r_t on the multipliers').
+       * @return false if GMRES did not reach it, or x is not finite
+       */
+      bool
+      solve(const TrilinosWrappers::SparseMatrix &matrix,
+            TrilinosWrappers::MPI::Vector        &x,
+            const TrilinosWrappers::MPI::Vector  &b,
+            const TrilinosWrappers::MPI::Vector  &row_weights,
+            const double                          relative_tolerance);
+
+      /** @brief GMRES iterations of the last solve. */
+      unsigned int
+      last_iterations() const
+      {
+        return iterations;
+      }
+
+      /** @brief Why the last solve failed, in words. */
+      const std::string &
+      last_error() const
+      {
+        return error;
+      }
+
+      /** @brief Apply P⁻¹ (the preconditioner's interface for GMRES). */
+      void
+      vmult(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src) const;
+
+    private:
+      /** K, B, C, D from @p matrix, then the AMG of K and the factorised Ŝ. */
+      void
+      set_up(const TrilinosWrappers::SparseMatrix &matrix);
+
+      const MPI_Comm                                  communicator;
+      const types::global_dof_index                   n_u;
+      IndexSet                                        owned_u, owned_m;
+      const std::vector<std::vector<bool>>            constant_modes;
+      const bool                                      higher_order_elements;
+      const unsigned int                              max_iterations;
+      TrilinosWrappers::SparseMatrix                  K, B, C, D, schur;
+      TrilinosWrappers::PreconditionAMG               amg;
+      SolverControl                                   schur_control;
+      std::unique_ptr<TrilinosWrappers::SolverDirect> schur_factorisation;
+      mutable TrilinosWrappers::MPI::Vector           r_u, r_m, y_u, y_m;
+      /** 1 / the row weights of the last solve */
+      TrilinosWrappers::MPI::Vector inverse_weights;
+      unsigned int                  iterations = 0;
+      std::string                   error;
+    };
+  } // namespace LinearSolvers
+} // namespace StabilizedLagrangian

@@ -1,0 +1,247 @@
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <stabilized_lagrangian/solver/iterative_solver.h>
+
+#include <Epetra_CrsMatrix.h>
+
+#include <cmath>
+
+namespace StabilizedLagrangian
+{
+  namespace LinearSolvers
+  {
+    namespace
+    {
+      /** f(row, column, value) for every stored entry of the rows @p rows (locally owned). */
+      template <typename Function>
+      void
+      for_each_entry(const TrilinosWrappers::SparseMatrix &matrix,
+                     const IndexSet                       &rows,
+                     const Function                       &f)
+      {
+        const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+        for (const auto row : rows)
+          {
+            const int local = A.RowMap().LID(static_cast<int>(row));
+            if (local < 0)
+              continue;
+            int     n       = 0;
+            double *values  = nullptr;
+            int    *indices = nullptr;
+            A.ExtractMyRowView(local, n, values, indices);
+            for (int k = 0; k < n; ++k)
+              f(row, static_cast<types::global_dof_index>(A.ColMap().GID(indices[k])), values[k]);
+          }
+      }
+
+      /**
+       * The block of @p matrix with the rows @p rows and the columns of the
+       * displacement (@p u_columns) or of the multipliers, as a matrix of its
+       * own on the blocks' numberings: a displacement DoF keeps its index, a
+       * multiplier DoF i becomes i − n_u; @p rows, @p domain in those.
+       */
+      void
+      extract_block(const TrilinosWrappers::SparseMatrix &matrix,
+                    const IndexSet                       &rows,
+                    const IndexSet                       &domain,
+                    const types::global_dof_index         n_u,
+                    const bool                            u_rows,
+                    const bool                            u_columns,
+                    const MPI_Comm                        communicator,
+                    TrilinosWrappers::SparseMatrix       &block)
+      {
+        IndexSet monolithic_rows(matrix.m());
+        for (const auto row : rows)
+          monolithic_rows.add_index(u_rows ? row : row + n_u);
+        monolithic_rows.compress();
+        const types::global_dof_index     row_shift    = u_rows ? 0 : n_u;
+        const types::global_dof_index     column_shift = u_columns ? 0 : n_u;
+        TrilinosWrappers::SparsityPattern pattern(rows, domain, communicator);
+        for_each_entry(
+            matrix, monolithic_rows, [&](const auto row, const auto column, const double) {
+              if ((column < n_u) == u_columns)
+                pattern.add(row - row_shift, column - column_shift);
+            });
+        pattern.compress();
+        block.reinit(pattern);
+        for_each_entry(
+            matrix, monolithic_rows, [&](const auto row, const auto column, const double value) {
+              if ((column < n_u) == u_columns)
+                block.set(row - row_shift, column - column_shift, value);
+            });
+        block.compress(VectorOperation::insert);
+      }
+    } // namespace
+
+    BlockIterativeSolver::BlockIterativeSolver(const IndexSet                       &owned,
+                                               const types::global_dof_index         n_u,
+                                               const MPI_Comm                        communicator,
+                                               const std::vector<std::vector<bool>> &constant_modes,
+                                               const bool         higher_order_elements,
+                                               const unsigned int max_iterations)
+        : communicator(communicator)
+        , n_u(n_u)
+        , owned_u(n_u)
+        , owned_m(owned.size() - n_u)
+        , constant_modes(constant_modes)
+        , higher_order_elements(higher_order_elements)
+        , max_iterations(max_iterations)
+    {
+      for (const auto index : owned)
+        if (index < n_u)
+          owned_u.add_index(index);
+        else
+          owned_m.add_index(index - n_u);
+      owned_u.compress();
+      owned_m.compress();
+      r_u.reinit(owned_u, communicator);
+      y_u.reinit(owned_u, communicator);
+      r_m.reinit(owned_m, communicator);
+      y_m.reinit(owned_m, communicator);
+    }
+
+    BlockIterativeSolver::~BlockIterativeSolver() = default;
+
+    void
+    BlockIterativeSolver::set_up(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      extract_block(matrix, owned_u, owned_u, n_u, true, true, communicator, K);
+      extract_block(matrix, owned_u, owned_m, n_u, true, false, communicator, B);
+      extract_block(matrix, owned_m, owned_u, n_u, false, true, communicator, C);
+      extract_block(matrix, owned_m, owned_m, n_u, false, false, communicator, D);
+
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = higher_order_elements;
+      data.constant_modes        = constant_modes;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg.initialize(K, data);
+
+      schur_factorisation.reset();
+      if (owned_m.size() == 0)
+        return;
+      // Ŝ = D − C diag(K)⁻¹ B, on the union of the patterns of D and C B
+      TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
+      for (const auto i : owned_u)
+        {
+          const double diagonal = K.diag_element(i);
+          inverse_diagonal(i)   = diagonal != 0. ? 1. / diagonal : 0.;
+        }
+      inverse_diagonal.compress(VectorOperation::insert);
+      TrilinosWrappers::SparseMatrix product;
+      C.mmult(product, B, inverse_diagonal);
+      TrilinosWrappers::SparsityPattern pattern(owned_m, owned_m, communicator);
+      const auto add_to_pattern = [&](const auto row, const auto column, const double) {
+        pattern.add(row, column);
+      };
+      for_each_entry(D, owned_m, add_to_pattern);
+      for_each_entry(product, owned_m, add_to_pattern);
+      pattern.compress();
+      schur.reinit(pattern);
+      for_each_entry(D, owned_m, [&](const auto row, const auto column, const double value) {
+        schur.add(row, column, value);
+      });
+      for_each_entry(product, owned_m, [&](const auto row, const auto column, const double value) {
+        schur.add(row, column, -value);
+      });
+      schur.compress(VectorOperation::add);
+      schur_factorisation = std::make_unique<TrilinosWrappers::SolverDirect>(
+          schur_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+      schur_factorisation->initialize(schur);
+    }
+
+    void
+    BlockIterativeSolver::vmult(TrilinosWrappers::MPI::Vector       &dst,
+                                const TrilinosWrappers::MPI::Vector &src) const
+    {
+      // P [y_u; y_m] = [r_u; r_m]: Ŝ y_m = r_m, then K̂ y_u = r_u − B y_m. The
+      // owned rows of the whole system are the owned u rows, then the owned
+      // multiplier rows, both ascending: the blocks are slices of the local array.
+      const unsigned int n_owned_u = owned_u.n_elements();
+      const double      *source    = src.trilinos_vector()[0];
+      const double      *unweight  = inverse_weights.trilinos_vector()[0];
+      double            *ru = r_u.trilinos_vector()[0], *rm = r_m.trilinos_vector()[0];
+      for (unsigned int k = 0; k < n_owned_u; ++k)
+        ru[k] = source[k] * unweight[k];
+      for (unsigned int k = 0; k < owned_m.n_elements(); ++k)
+        rm[k] = source[n_owned_u + k] * unweight[n_owned_u + k];
+      if (schur_factorisation)
+        schur_factorisation->solve(y_m, r_m);
+      B.vmult(y_u, y_m);
+      r_u -= y_u;
+      amg.vmult(y_u, r_u);
+      double       *destination = dst.trilinos_vector()[0];
+      const double *yu = y_u.trilinos_vector()[0], *ym = y_m.trilinos_vector()[0];
+      for (unsigned int k = 0; k < n_owned_u; ++k)
+        destination[k] = yu[k];
+      for (unsigned int k = 0; k < owned_m.n_elements(); ++k)
+        destination[n_owned_u + k] = ym[k];
+    }
+
+    namespace
+    {
+      /** W J: the Newton matrix with its rows weighted. */
+      struct WeightedOperator
+      {
+        const TrilinosWrappers::SparseMatrix &matrix;
+        const TrilinosWrappers::MPI::Vector  &weights;
+        void
+        vmult(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src) const
+        {
+          matrix.vmult(dst, src);
+          dst.scale(weights);
+        }
+      };
+    } // namespace
+
+    bool
+    BlockIterativeSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                                TrilinosWrappers::MPI::Vector        &x,
+                                const TrilinosWrappers::MPI::Vector  &b,
+                                const TrilinosWrappers::MPI::Vector  &row_weights,
+                                const double                          relative_tolerance)
+    {
+      error.clear();
+      iterations = 0;
+      set_up(matrix);
+      x = 0.;
+      // GMRES on W J x = W b, W the rows' weights, preconditioned by (W P)⁻¹ = P⁻¹ W⁻¹:
+      // its residual is the weighted one the Newton criterion measures
+      inverse_weights.reinit(row_weights);
+      for (unsigned int k = 0; k < inverse_weights.locally_owned_size(); ++k)
+        inverse_weights.trilinos_vector()[0][k] = 1. / row_weights.trilinos_vector()[0][k];
+      TrilinosWrappers::MPI::Vector weighted_b(b);
+      weighted_b.scale(row_weights);
+      const double target = relative_tolerance * weighted_b.l2_norm();
+      if (target == 0.)
+        return true;
+      SolverControl control(max_iterations, target, false, false);
+      SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData data(100, true);
+      SolverGMRES<TrilinosWrappers::MPI::Vector>                 gmres(control, data);
+      try
+        {
+          gmres.solve(WeightedOperator{matrix, row_weights}, x, weighted_b, *this);
+        }
+      catch (const SolverControl::NoConvergence &failure)
+        {
+          iterations = failure.last_step;
+          error      = "GMRES did not reach the relative residual " +
+                  std::to_string(relative_tolerance) + " in " + std::to_string(max_iterations) +
+                  " iterations (last " +
+                  std::to_string(failure.last_residual / weighted_b.l2_norm()) + ")";
+          return false;
+        }
+      iterations = control.last_step();
+      if (!std::isfinite(x.linfty_norm()))
+        {
+          error = "GMRES returned a solution that is not finite";
+          return false;
+        }
+      return true;
+    }
+  } // namespace LinearSolvers
+} // namespace StabilizedLagrangian

@@ -1,0 +1,54 @@
+#!/usr/bin/python3
+"""`Linear solver/Method = iterative` (GMRES, block-triangular preconditioner:
+AMG on the displacement block, the Schur complement with diag(K) on the
+multipliers, Eisenstat-Walker tolerances) against the direct solver, on the
+patin (2D, Coulomb friction, 1 and 2 MPI ranks), the 3D patin, the Hertz
+sphere (3D, Q1/P1) and the two cylinders (two deformable bodies, friction).
+
+The iterative solve is inexact early in each load step and tightens with the
+Newton residual, so the Newton iteration counts may differ by one per step
+from the direct solver's and no more; both runs converge to the same Newton
+tolerance, so the forces of every step agree to well below the
+discretisation (bound 1e-6 relative to the normal force, for Newton
+tolerances of 1e-8 to 1e-10 on the residual). No system may be left to the
+direct solver, and the GMRES iterations are reported (run_summary.csv)."""
+import os
+import sys
+import sltest
+
+executable, workdir = sys.argv[1], sys.argv[2]
+check = sltest.Checker()
+prm_dir = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm"))
+ITERATIVE = sltest.nested_set("Linear solver/Method", "iterative")
+
+for name, ranks in (("patin_elastic", 1), ("patin_elastic", 2), ("patin_3d", 1), ("hertz_sphere", 1),
+                    ("two_cylinders", 1)):
+    scene = sltest.read_prm(os.path.join(prm_dir, name + ".prm"))
+    label = f"{name}, {ranks} rank(s)"
+    runs = {}
+    for method in ("direct", "iterative"):
+        out = os.path.join(workdir, f"{name}-np{ranks}-{method}")
+        text = scene + (ITERATIVE if method == "iterative" else "") + sltest.QUIET_OUTPUT
+        code, log = sltest.run(executable, text, out, ranks=ranks, expect_success=False)
+        check(code == 0, f"{label}, {method}: exit code {code}")
+        if code != 0:
+            print(log[-3000:])
+            continue
+        runs[method] = (sltest.read_csv(os.path.join(out, "output", "statistics.csv")),
+                        sltest.read_csv(os.path.join(out, "output", "run_summary.csv"))[0])
+    if len(runs) < 2:
+        continue
+    (direct, _), (iterative, summary) = runs["direct"], runs["iterative"]
+    check(len(direct) == len(iterative), f"{label}: {len(iterative)} steps, the direct solver's {len(direct)}")
+    differences = [int(b["newton_iterations"] - a["newton_iterations"]) for a, b in zip(direct, iterative)]
+    check(all(abs(d) <= 1 for d in differences),
+          f"{label}: Newton iterations per step within one of the direct solver's (differences {differences})")
+    scale = max(abs(row["normal_force_N"]) for row in direct)
+    worst = max(abs(a[key] - b[key]) for a, b in zip(direct, iterative)
+                for key in ("normal_force_N", "tangential_force_N")) / scale
+    check(worst <= 1e-6, f"{label}: forces of every step agree to {worst:.1e} of the normal force")
+    check(summary["iterative_fallbacks"] == 0 and summary["krylov_iterations"] > 0,
+          f"{label}: {int(summary['krylov_iterations'])} GMRES iterations for "
+          f"{int(summary['newton_iterations'])} Newton iterations, "
+          f"{int(summary['iterative_fallbacks'])} systems left to the direct solver")
+check.finish()
