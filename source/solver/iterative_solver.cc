@@ -41,7 +41,9 @@ namespace StabilizedLagrangian
        * The block of @p matrix with the rows @p rows and the columns of the
        * displacement (@p u_columns) or of the multipliers, as a matrix of its
        * own on the blocks' numberings: a displacement DoF keeps its index, a
-       * multiplier DoF i becomes i − n_u; @p rows, @p domain in those.
+       * multiplier DoF i becomes i − n_u; @p rows, @p domain in those. With
+       * @p new_pattern its sparsity pattern is built, else @p block has it
+       * from an earlier call and only the values are copied, row by row.
        */
       void
       extract_block(const TrilinosWrappers::SparseMatrix &matrix,
@@ -50,6 +52,7 @@ namespace StabilizedLagrangian
                     const types::global_dof_index         n_u,
                     const bool                            u_rows,
                     const bool                            u_columns,
+                    const bool                            new_pattern,
                     const MPI_Comm                        communicator,
                     TrilinosWrappers::SparseMatrix       &block)
       {
@@ -57,21 +60,43 @@ namespace StabilizedLagrangian
         for (const auto row : rows)
           monolithic_rows.add_index(u_rows ? row : row + n_u);
         monolithic_rows.compress();
-        const types::global_dof_index     row_shift    = u_rows ? 0 : n_u;
-        const types::global_dof_index     column_shift = u_columns ? 0 : n_u;
-        TrilinosWrappers::SparsityPattern pattern(rows, domain, communicator);
-        for_each_entry(
-            matrix, monolithic_rows, [&](const auto row, const auto column, const double) {
-              if ((column < n_u) == u_columns)
-                pattern.add(row - row_shift, column - column_shift);
-            });
-        pattern.compress();
-        block.reinit(pattern);
+        const types::global_dof_index row_shift    = u_rows ? 0 : n_u;
+        const types::global_dof_index column_shift = u_columns ? 0 : n_u;
+        if (new_pattern)
+          {
+            TrilinosWrappers::SparsityPattern pattern(rows, domain, communicator);
+            for_each_entry(
+                matrix, monolithic_rows, [&](const auto row, const auto column, const double) {
+                  if ((column < n_u) == u_columns)
+                    pattern.add(row - row_shift, column - column_shift);
+                });
+            pattern.compress();
+            block.reinit(pattern);
+          }
+        // the entries of a row arrive together: set them together
+        types::global_dof_index              current = numbers::invalid_dof_index;
+        std::vector<types::global_dof_index> columns;
+        std::vector<double>                  values;
+        const auto                           flush = [&]() {
+          if (current != numbers::invalid_dof_index && !columns.empty())
+            block.set(current - row_shift, columns, values);
+          columns.clear();
+          values.clear();
+        };
         for_each_entry(
             matrix, monolithic_rows, [&](const auto row, const auto column, const double value) {
+              if (row != current)
+                {
+                  flush();
+                  current = row;
+                }
               if ((column < n_u) == u_columns)
-                block.set(row - row_shift, column - column_shift, value);
+                {
+                  columns.push_back(column - column_shift);
+                  values.push_back(value);
+                }
             });
+        flush();
         block.compress(VectorOperation::insert);
       }
     } // namespace
@@ -108,10 +133,14 @@ namespace StabilizedLagrangian
     void
     BlockIterativeSolver::set_up(const TrilinosWrappers::SparseMatrix &matrix)
     {
-      extract_block(matrix, owned_u, owned_u, n_u, true, true, communicator, K);
-      extract_block(matrix, owned_u, owned_m, n_u, true, false, communicator, B);
-      extract_block(matrix, owned_m, owned_u, n_u, false, true, communicator, C);
-      extract_block(matrix, owned_m, owned_m, n_u, false, false, communicator, D);
+      // the Newton matrix keeps its pattern for the life of this solver
+      // (ContactProblem makes a new one with each new pattern)
+      const bool new_pattern = !blocks_ready;
+      extract_block(matrix, owned_u, owned_u, n_u, true, true, new_pattern, communicator, K);
+      extract_block(matrix, owned_u, owned_m, n_u, true, false, new_pattern, communicator, B);
+      extract_block(matrix, owned_m, owned_u, n_u, false, true, new_pattern, communicator, C);
+      extract_block(matrix, owned_m, owned_m, n_u, false, false, new_pattern, communicator, D);
+      blocks_ready = true;
 
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.elliptic              = true;

@@ -106,6 +106,8 @@ namespace StabilizedLagrangian
       TrilinosWrappers::MPI::Vector inverse_weights;
       unsigned int                  iterations = 0;
       std::string                   error;
+      /** whether K, B, C, D have the Newton matrix's pattern (set_up() once) */
+      bool blocks_ready = false;
     };
   } // namespace LinearSolvers
 } // namespace StabilizedLagrangian
