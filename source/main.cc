@@ -50,7 +50,7 @@ Output goes to the directory of the entry Output/Output directory.
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse(prm, text, is_file);
+    Parameters::parse<dim>(prm, text, is_file);
     if (!threads.empty())
       {
         prm.enter_subsection("Linear solver");

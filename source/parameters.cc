@@ -180,41 +180,143 @@ namespace StabilizedLagrangian
       }
     } // namespace
 
+    ConditionSections
+    condition_sections(const std::string &text)
+    {
+      ConditionSections        sections;
+      std::vector<std::string> path;
+      std::istringstream       lines(text);
+      std::string              line, joined;
+      while (std::getline(lines, line))
+        {
+          // ParameterHandler's syntax: '#' starts a comment, a trailing backslash continues a line
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (!line.empty() && line.back() == '\\')
+            {
+              joined += line.substr(0, line.size() - 1) + " ";
+              continue;
+            }
+          line = Utilities::trim(joined + line);
+          joined.clear();
+          if (line == "end")
+            {
+              if (!path.empty())
+                path.pop_back();
+              continue;
+            }
+          if (line.rfind("subsection", 0) != 0 || line.size() < 11 ||
+              !std::isspace(static_cast<unsigned char>(line[10])))
+            continue;
+          const std::string name = Utilities::trim(line.substr(10));
+          if (path.size() == 1 && path[0] == "Boundary conditions")
+            {
+              const std::size_t space = name.find(' ');
+              const std::string kind  = name.substr(0, space);
+              const std::string label =
+                  space == std::string::npos ? "" : Utilities::trim(name.substr(space));
+              auto *list = kind == "Dirichlet" ? &sections.dirichlet
+                           : kind == "Neumann" ? &sections.neumann
+                           : kind == "Spring"  ? &sections.spring
+                                               : nullptr;
+              if (list == nullptr || label.empty())
+                throw InputError("Boundary conditions/" + name +
+                                 ": a boundary condition is a subsection 'Dirichlet <name>' "
+                                 "(prescribed displacement), 'Neumann <name>' (prescribed "
+                                 "traction) or 'Spring <name>' (elastic support), with any "
+                                 "name, e.g. 'Dirichlet top'.");
+              if (std::find(list->begin(), list->end(), label) == list->end())
+                list->push_back(label);
+            }
+          path.push_back(name);
+        }
+      return sections;
+    }
+
+    namespace
+    {
+      /**
+       * The entries Functions::ParsedFunction<dim> reads (a vector of dim
+       * components of x, y(, z) and t), documented in a few lines.
+       */
+      template <int dim>
+      void
+      declare_function(ParameterHandler &prm, const std::string &unit)
+      {
+        const std::string coordinates = dim == 2 ? "x,y,t" : "x,y,z,t";
+        prm.declare_entry("Function expression",
+                          dim == 2 ? "0; 0" : "0; 0; 0",
+                          Patterns::Anything(),
+                          std::to_string(dim) + " components (" + unit +
+                              ") separated by ';', of the coordinates and the time (muparser: "
+                              "+ - * / ^, sin, exp, sqrt, min, max, if(condition, a, b), ...).");
+        prm.declare_entry("Function constants",
+                          "",
+                          Patterns::Anything(),
+                          "Names for values in the expression: 'name=value, ...'.");
+        prm.declare_entry("Variable names",
+                          coordinates,
+                          Patterns::Anything(),
+                          "The names of the coordinates and the time in the expression.");
+      }
+    } // namespace
+
     template <int dim>
     void
-    BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+    BoundaryConditions<dim>::declare_parameters(ParameterHandler        &prm,
+                                                const ConditionSections &sections)
     {
+      const auto declared = [&prm](const std::string &section) {
+        return prm.subsection_path_exists({"Boundary conditions", section});
+      };
+      const auto boundary_entry = [&prm](const std::string &what) {
+        prm.declare_entry("Boundary id",
+                          "-1",
+                          Patterns::Anything(),
+                          "Boundary " + what +
+                              ": its id, or the name of a boundary of the mesh (a Gmsh "
+                              "physical group); -1: unused.");
+      };
       prm.enter_subsection("Boundary conditions");
-      for (unsigned int i = 1; i <= n_dirichlet_slots; ++i)
-        {
-          prm.enter_subsection("Dirichlet " + std::to_string(i));
-          prm.declare_entry("Boundary id",
-                            "-1",
-                            Patterns::Anything(),
-                            "Boundary with a prescribed displacement: its id, or the name of a "
-                            "boundary of the mesh (a Gmsh physical group); -1: slot unused.");
-          prm.declare_entry("Components",
-                            dim == 2 ? "x, y" : "x, y, z",
-                            Patterns::MultipleSelection(component_names<dim>()),
-                            "Displacement components that are prescribed.");
-          prm.enter_subsection("Displacement");
-          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
-          prm.leave_subsection();
-          prm.leave_subsection();
-        }
-      for (unsigned int i = 1; i <= n_neumann_slots; ++i)
-        {
-          prm.enter_subsection("Neumann " + std::to_string(i));
-          prm.declare_entry("Boundary id",
-                            "-1",
-                            Patterns::Anything(),
-                            "Boundary with a prescribed traction: its id, or the name of a "
-                            "boundary of the mesh (a Gmsh physical group); -1: slot unused.");
-          prm.enter_subsection("Traction");
-          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
-          prm.leave_subsection();
-          prm.leave_subsection();
-        }
+      for (const auto &name : sections.dirichlet)
+        if (!declared("Dirichlet " + name))
+          {
+            prm.enter_subsection("Dirichlet " + name);
+            boundary_entry("with a prescribed displacement");
+            prm.declare_entry("Components",
+                              dim == 2 ? "x, y" : "x, y, z",
+                              Patterns::MultipleSelection(component_names<dim>()),
+                              "Displacement components that are prescribed.");
+            prm.enter_subsection("Displacement");
+            declare_function<dim>(prm, "mm");
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
+      for (const auto &name : sections.neumann)
+        if (!declared("Neumann " + name))
+          {
+            prm.enter_subsection("Neumann " + name);
+            boundary_entry("with a prescribed traction (MPa, in the reference configuration)");
+            prm.enter_subsection("Traction");
+            declare_function<dim>(prm, "MPa");
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
+      for (const auto &name : sections.spring)
+        if (!declared("Spring " + name))
+          {
+            prm.enter_subsection("Spring " + name);
+            boundary_entry("held by springs: the traction -K (u - u_0), per unit reference area");
+            prm.declare_entry("Stiffness",
+                              dim == 2 ? "0, 0" : "0, 0, 0",
+                              Patterns::List(Patterns::Double(0.), dim, dim),
+                              "K_xx, K_yy" + std::string(dim == 3 ? ", K_zz" : "") +
+                                  " (MPa/mm: traction per displacement, >= 0), along the "
+                                  "global axes; 0: that component is free.");
+            prm.enter_subsection("Reference displacement");
+            declare_function<dim>(prm, "mm");
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
       prm.leave_subsection();
     }
 
@@ -278,6 +380,7 @@ namespace StabilizedLagrangian
     {
       dirichlet.clear();
       neumann.clear();
+      springs.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         const std::string entry    = "Boundary conditions/" + slot + "/" + name;
         auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
@@ -326,37 +429,71 @@ namespace StabilizedLagrangian
         return function;
       };
 
+      // the conditions declared: those of the parsed text (and the template's)
+      std::ostringstream declared;
+      prm.print_parameters(declared, ParameterHandler::PRM);
+      const ConditionSections sections = condition_sections(declared.str());
+      // the condition's boundary, or nothing where it is unused (-1)
+      const auto boundary = [&prm](const std::string &section)
+          -> std::optional<std::pair<types::boundary_id, std::string>> {
+        const std::string value = Utilities::trim(prm.get("Boundary id"));
+        if (value == "-1")
+          return std::nullopt;
+        const auto id =
+            boundary_id_or_name(value, "Boundary conditions/" + section + "/Boundary id");
+        return std::make_pair(id.value_or(0), id ? "" : value);
+      };
       prm.enter_subsection("Boundary conditions");
-      for (unsigned int i = 1; i <= n_dirichlet_slots; ++i)
+      for (const auto &name : sections.dirichlet)
         {
-          const std::string slot = "Dirichlet " + std::to_string(i);
-          prm.enter_subsection(slot);
-          const std::string boundary = Utilities::trim(prm.get("Boundary id"));
-          if (boundary != "-1")
+          const std::string section = "Dirichlet " + name;
+          prm.enter_subsection(section);
+          if (const auto where = boundary(section))
             {
               std::vector<bool> mask(dim, false);
               for (const auto &c : Utilities::split_string_list(prm.get("Components")))
                 mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
-              const auto id =
-                  boundary_id_or_name(boundary, "Boundary conditions/" + slot + "/Boundary id");
-              dirichlet.push_back(DirichletCondition<dim>{id.value_or(0),
-                                                          id ? "" : boundary,
+              dirichlet.push_back(DirichletCondition<dim>{where->first,
+                                                          where->second,
                                                           ComponentMask(mask),
-                                                          parse_function(slot, "Displacement")});
+                                                          parse_function(section, "Displacement"),
+                                                          "Boundary conditions/" + section});
             }
           prm.leave_subsection();
         }
-      for (unsigned int i = 1; i <= n_neumann_slots; ++i)
+      for (const auto &name : sections.neumann)
         {
-          const std::string slot = "Neumann " + std::to_string(i);
-          prm.enter_subsection(slot);
-          const std::string boundary = Utilities::trim(prm.get("Boundary id"));
-          if (boundary != "-1")
+          const std::string section = "Neumann " + name;
+          prm.enter_subsection(section);
+          if (const auto where = boundary(section))
+            neumann.push_back(NeumannCondition<dim>{where->first,
+                                                    where->second,
+                                                    parse_function(section, "Traction"),
+                                                    "Boundary conditions/" + section});
+          prm.leave_subsection();
+        }
+      for (const auto &name : sections.spring)
+        {
+          const std::string section = "Spring " + name;
+          prm.enter_subsection(section);
+          if (const auto where = boundary(section))
             {
-              const auto id =
-                  boundary_id_or_name(boundary, "Boundary conditions/" + slot + "/Boundary id");
-              neumann.push_back(NeumannCondition<dim>{
-                  id.value_or(0), id ? "" : boundary, parse_function(slot, "Traction")});
+              const auto values =
+                  Utilities::string_to_double(Utilities::split_string_list(prm.get("Stiffness")));
+              Tensor<1, dim> stiffness;
+              for (unsigned int d = 0; d < dim; ++d)
+                stiffness[d] = values[d];
+              if (stiffness.norm() == 0.)
+                throw InputError("Boundary conditions/" + section +
+                                 "/Stiffness: all zero, so the springs hold nothing; give a "
+                                 "stiffness > 0 (MPa/mm) in at least one axis, or set Boundary "
+                                 "id = -1.");
+              springs.push_back(
+                  SpringCondition<dim>{where->first,
+                                       where->second,
+                                       stiffness,
+                                       parse_function(section, "Reference displacement"),
+                                       "Boundary conditions/" + section});
             }
           prm.leave_subsection();
         }
@@ -772,7 +909,7 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::pattern(),
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
-      BoundaryConditions<dim>::declare_parameters(prm);
+      BoundaryConditions<dim>::declare_parameters(prm, ConditionSections{{"1"}, {"1"}, {"1"}});
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
@@ -937,6 +1074,7 @@ namespace StabilizedLagrangian
       return (std::filesystem::path(parameter_file_directory) / path).string();
     }
 
+    template <int dim>
     void
     parse(ParameterHandler &prm, const std::string &text, const bool is_file)
     {
@@ -945,6 +1083,7 @@ namespace StabilizedLagrangian
       if (parameter_file_directory.empty())
         parameter_file_directory = ".";
       const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
+      BoundaryConditions<dim>::declare_parameters(prm, condition_sections(content.text));
       try
         {
           prm.parse_input_from_string(content.text);
@@ -983,6 +1122,10 @@ namespace StabilizedLagrangian
     template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;
     template struct BoundaryConditions<3>;
+    template void
+    parse<2>(ParameterHandler &, const std::string &, const bool);
+    template void
+    parse<3>(ParameterHandler &, const std::string &, const bool);
     template void
     declare_all<2>(ParameterHandler &);
     template void

@@ -289,6 +289,25 @@ text_case("dual pair, nodal quadrature",
           scene(settings=[DUAL, ("Contact/Complementarity", "weighted"),
                           ("Contact/Contact quadrature", "Gauss-Lobatto")]), "Contact quadrature = Gauss")
 
+# boundary conditions: a subsection of no known kind, springs that hold nothing or pull back
+SPRING = """subsection Boundary conditions
+  subsection Spring side
+    set Boundary id = BOUNDARY
+    set Stiffness   = STIFFNESS
+  end
+end
+"""
+text_case("a Robin subsection", scene() + "subsection Boundary conditions\n  subsection Robin 1\n  end\nend\n",
+          "'Spring <name>'")
+text_case("a Dirichlet subsection without a name",
+          scene() + "subsection Boundary conditions\n  subsection Dirichlet\n  end\nend\n", "'Dirichlet <name>'")
+text_case("springs of zero stiffness", scene() + SPRING.replace("BOUNDARY", "0").replace("STIFFNESS", "0, 0"),
+          "Spring side/Stiffness")
+text_case("springs of negative stiffness",
+          scene() + SPRING.replace("BOUNDARY", "0").replace("STIFFNESS", "-1, 0"), "Stiffness")
+text_case("springs on a boundary the mesh lacks",
+          scene() + SPRING.replace("BOUNDARY", "9").replace("STIFFNESS", "1, 0"), "Spring side/Boundary id")
+
 text_case("two balls touching", scene(settings=[("Geometry/Model", "two balls"),
                                                 ("Geometry/two balls/Initial gap", "0")]), "Initial gap")
 

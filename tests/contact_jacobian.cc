@@ -172,10 +172,10 @@ end
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse(prm,
-                      scene<dim>(quadrature, mu) + (generalized ? generalized_newton<dim>() : "") +
-                          material,
-                      false);
+    Parameters::parse<dim>(prm,
+                           scene<dim>(quadrature, mu) +
+                               (generalized ? generalized_newton<dim>() : "") + material,
+                           false);
     ContactProblem<dim> problem(prm, false);
     problem.setup();
 

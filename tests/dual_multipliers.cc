@@ -89,7 +89,7 @@ end
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse(prm, scene<dim>(pair), false);
+    Parameters::parse<dim>(prm, scene<dim>(pair), false);
     ContactProblem<dim> problem(prm, false);
     problem.setup();
     const auto                                mass = problem.multiplier_mass();

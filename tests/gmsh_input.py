@@ -109,7 +109,7 @@ for ranks, mu in ((1, 0), (2, 0), (1, 0.3), (2, 0.3)):
 groups = ["'bottom'", "'left'", "'right'", "'top'", "'block'"]
 for entry, old, new in (("Contact/Contact boundary ids", "set Contact boundary ids = bottom",
                          "set Contact boundary ids = bottm"),
-                        ("Boundary conditions/Dirichlet/Boundary id", "set Boundary id = top",
+                        ("Boundary conditions/Dirichlet 1/Boundary id", "set Boundary id = top",
                          "set Boundary id = Top")):
     text = gmsh_scene.replace(old, new)
     check(text != gmsh_scene, f"the scene has '{old}'")

@@ -3,6 +3,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/parsed_function.h>
+#include <deal.II/base/tensor.h>
 
 #include <deal.II/fe/component_mask.h>
 
@@ -126,6 +127,7 @@ namespace StabilizedLagrangian
       std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       ComponentMask components;
       std::shared_ptr<BoundaryFunction<dim>> displacement;
+      std::string section; ///< "Boundary conditions/Dirichlet <name>", for messages
     };
 
     /** @brief A prescribed traction (MPa) on a boundary. */
@@ -134,19 +136,57 @@ namespace StabilizedLagrangian
       types::boundary_id boundary_id;
       std::string boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       std::shared_ptr<BoundaryFunction<dim>> traction;
+      std::string                            section; ///< "Boundary conditions/Neumann <name>"
     };
 
-    /** @brief `Boundary conditions` subsection: Dirichlet and Neumann slots. */
+    /**
+     * @brief An elastic support (a Robin condition): the traction
+     * t = −K (u − u_0) on a boundary, K diagonal in the global axes.
+     */
+    template <int dim> struct SpringCondition
+    {
+      types::boundary_id boundary_id;
+      std::string    boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
+      Tensor<1, dim> stiffness;     ///< K_xx, K_yy (, K_zz), MPa/mm: traction per displacement
+      std::shared_ptr<BoundaryFunction<dim>> reference; ///< u_0(x, t), mm
+      std::string                            section;   ///< "Boundary conditions/Spring <name>"
+    };
+
+    /**
+     * @brief The condition subsections of `Boundary conditions` a parameter
+     * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`, any
+     * number of each (the names are the words after the kind).
+     */
+    struct ConditionSections
+    {
+      std::vector<std::string> dirichlet, neumann, spring;
+    };
+
+    /**
+     * @brief The condition subsections of @p text (a parameter file with its
+     * includes expanded, or ParameterHandler's own PRM output); throws
+     * InputError for a `Boundary conditions` subsection of no known kind.
+     */
+    ConditionSections
+    condition_sections(const std::string &text);
+
+    /**
+     * @brief `Boundary conditions` subsection: a list of conditions of any
+     * length, each its own subsection (`Dirichlet <name>`, `Neumann <name>`,
+     * `Spring <name>`).
+     */
     template <int dim> struct BoundaryConditions
     {
-      static constexpr unsigned int n_dirichlet_slots = 6;
-      static constexpr unsigned int n_neumann_slots   = 3;
-
       std::vector<DirichletCondition<dim>> dirichlet;
       std::vector<NeumannCondition<dim>>   neumann;
+      std::vector<SpringCondition<dim>>    springs;
 
+      /**
+       * Declare the subsections @p sections names (those already declared
+       * are left as they are).
+       */
       static void
-      declare_parameters(ParameterHandler &prm);
+      declare_parameters(ParameterHandler &prm, const ConditionSections &sections);
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -290,7 +330,9 @@ namespace StabilizedLagrangian
     };
 
     /**
-     * @brief Declare every entry of a run in dimension @p dim, plug-in subsections included.
+     * @brief Declare every entry of a run in dimension @p dim, plug-in
+     * subsections included, with one condition of each kind (`Dirichlet 1`,
+     * `Neumann 1`, `Spring 1`) as the boundary conditions' template.
      */
     template <int dim>
     void
@@ -304,8 +346,11 @@ namespace StabilizedLagrangian
     read_dimension(const std::string &text, const bool is_file);
 
     /**
-     * @brief Parse a parameter file (or string) into @p prm with a clear error on failure.
+     * @brief Parse a parameter file (or string) into @p prm, declared by
+     * declare_all<dim>, with a clear error on failure; the boundary condition
+     * subsections the text names are declared first.
      */
+    template <int dim>
     void
     parse(ParameterHandler &prm, const std::string &text, const bool is_file);
 

@@ -61,6 +61,8 @@ namespace StabilizedLagrangian
     assemble_volume(assemble_matrix);
     for (const auto &bc : boundary_conditions.neumann)
       bc.traction->check_finite(mpi_communicator);
+    for (const auto &bc : boundary_conditions.springs)
+      bc.reference->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
@@ -191,7 +193,14 @@ namespace StabilizedLagrangian
           // the force scale of the scaled Newton criterion: internal forces
           // without the Dirichlet constraints, so their rows hold the reactions
           hanging_constraints.distribute_local_to_global(cell_rhs, dofs, internal_force);
-          add_neumann_loads(cell, dofs, neumann_values, cell_rhs, cell_external);
+          add_boundary_loads(cell,
+                             dofs,
+                             coefficients,
+                             neumann_values,
+                             cell_matrix,
+                             cell_rhs,
+                             cell_external,
+                             assemble_matrix);
           add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
         }
   }
@@ -237,26 +246,85 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::add_neumann_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                                         const std::vector<types::global_dof_index>           &dofs,
-                                         FEFaceValues<dim> &neumann_values,
-                                         Vector<double>    &cell_rhs,
-                                         Vector<double>    &cell_external)
+  ContactProblem<dim>::add_boundary_loads(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const std::vector<types::global_dof_index>           &dofs,
+      const std::vector<double>                            &coefficients,
+      FEFaceValues<dim>                                    &face_values,
+      FullMatrix<double>                                   &cell_matrix,
+      Vector<double>                                       &cell_rhs,
+      Vector<double>                                       &cell_external,
+      const bool                                            assemble_matrix)
   {
     bool loaded = false;
-    for (const auto &bc : boundary_conditions.neumann)
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bc.boundary_id)
-          {
-            if (!loaded)
-              cell_external = cell_rhs;
-            loaded = true;
-            add_neumann_contribution(cell, f, *bc.traction, neumann_values, cell_rhs);
-          }
+    for (const unsigned int f : cell->face_indices())
+      {
+        if (!cell->face(f)->at_boundary())
+          continue;
+        const types::boundary_id id = cell->face(f)->boundary_id();
+        for (const auto &bc : boundary_conditions.neumann)
+          if (id == bc.boundary_id)
+            {
+              if (!loaded)
+                cell_external = cell_rhs;
+              loaded = true;
+              add_neumann_contribution(cell, f, *bc.traction, face_values, cell_rhs);
+            }
+        for (const auto &bc : boundary_conditions.springs)
+          if (id == bc.boundary_id)
+            {
+              if (!loaded)
+                cell_external = cell_rhs;
+              loaded = true;
+              add_spring_contribution(
+                  cell, f, bc, coefficients, face_values, cell_matrix, cell_rhs, assemble_matrix);
+            }
+      }
     if (loaded)
       {
         cell_external -= cell_rhs;
         hanging_constraints.distribute_local_to_global(cell_external, dofs, external_force);
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_spring_contribution(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const unsigned int                                    face_no,
+      const Parameters::SpringCondition<dim>               &spring,
+      const std::vector<double>                            &coefficients,
+      FEFaceValues<dim>                                    &fe_face_values,
+      FullMatrix<double>                                   &cell_matrix,
+      Vector<double>                                       &cell_rhs,
+      const bool                                            assemble_matrix) const
+  {
+    // the traction t = −K (u − u_0): its work −∫ t·φ_i in the residual and
+    // ∫ K φ_i φ_j (same component) in the Jacobian
+    fe_face_values.reinit(cell, face_no);
+    spring.reference->set_time(time);
+    const unsigned int n_dofs = fe_u->n_dofs_per_cell();
+    Vector<double>     u_0(dim);
+    for (unsigned int q = 0; q < fe_face_values.n_quadrature_points; ++q)
+      {
+        spring.reference->vector_value(fe_face_values.quadrature_point(q), u_0);
+        Tensor<1, dim> u;
+        for (unsigned int j = 0; j < n_dofs; ++j)
+          u[fe_u->system_to_component_index(j).first] +=
+              coefficients[j] * fe_face_values.shape_value(j, q);
+        const double JxW = fe_face_values.JxW(q);
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            const unsigned int c = fe_u->system_to_component_index(i).first;
+            if (spring.stiffness[c] == 0.)
+              continue;
+            const double k_phi = spring.stiffness[c] * fe_face_values.shape_value(i, q) * JxW;
+            cell_rhs(i) += k_phi * (u[c] - u_0(c));
+            if (assemble_matrix)
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                if (fe_u->system_to_component_index(j).first == c)
+                  cell_matrix(i, j) += k_phi * fe_face_values.shape_value(j, q);
+          }
       }
   }
 
@@ -428,12 +496,24 @@ namespace StabilizedLagrangian
       FEFaceValues<dim> &,                                                                        \
       Vector<double> &) const;                                                                    \
   template void ContactProblem<dim>::assemble_contact(bool);                                      \
-  template void ContactProblem<dim>::add_neumann_loads(                                           \
+  template void ContactProblem<dim>::add_boundary_loads(                                          \
       const typename DoFHandler<dim>::active_cell_iterator &,                                     \
       const std::vector<types::global_dof_index> &,                                               \
+      const std::vector<double> &,                                                                \
       FEFaceValues<dim> &,                                                                        \
+      FullMatrix<double> &,                                                                       \
       Vector<double> &,                                                                           \
-      Vector<double> &);                                                                          \
+      Vector<double> &,                                                                           \
+      bool);                                                                                      \
+  template void ContactProblem<dim>::add_spring_contribution(                                     \
+      const typename DoFHandler<dim>::active_cell_iterator &,                                     \
+      unsigned int,                                                                               \
+      const Parameters::SpringCondition<dim> &,                                                   \
+      const std::vector<double> &,                                                                \
+      FEFaceValues<dim> &,                                                                        \
+      FullMatrix<double> &,                                                                       \
+      Vector<double> &,                                                                           \
+      bool) const;                                                                                \
   template void ContactProblem<dim>::add_to_global_system(                                        \
       const FullMatrix<double> &,                                                                 \
       Vector<double> &,                                                                           \

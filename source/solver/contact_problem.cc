@@ -243,9 +243,11 @@ namespace StabilizedLagrangian
     resolve_boundaries();
     assign_material_slots();
     for (const auto &bc : boundary_conditions.dirichlet)
-      require_boundary(bc.boundary_id, "Boundary conditions/Dirichlet/Boundary id");
+      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
     for (const auto &bc : boundary_conditions.neumann)
-      require_boundary(bc.boundary_id, "Boundary conditions/Neumann/Boundary id");
+      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
+    for (const auto &bc : boundary_conditions.springs)
+      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
   }
 
   template <int dim>
@@ -290,12 +292,17 @@ namespace StabilizedLagrangian
       contact_parameters.boundary_ids.insert(resolve(name, "Contact/Contact boundary ids"));
     for (const auto &name : contact_parameters.master_names)
       contact_parameters.master_ids.insert(resolve(name, "Contact/Master boundary ids"));
-    for (auto &bc : boundary_conditions.dirichlet)
+    const auto resolve_condition = [&](auto &bc) {
       if (!bc.boundary_name.empty())
-        bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Dirichlet/Boundary id");
-    for (auto &bc : boundary_conditions.neumann)
-      if (!bc.boundary_name.empty())
-        bc.boundary_id = resolve(bc.boundary_name, "Boundary conditions/Neumann/Boundary id");
+        bc.boundary_id = resolve(bc.boundary_name, bc.section + "/Boundary id");
+    };
+    std::for_each(boundary_conditions.dirichlet.begin(),
+                  boundary_conditions.dirichlet.end(),
+                  resolve_condition);
+    std::for_each(
+        boundary_conditions.neumann.begin(), boundary_conditions.neumann.end(), resolve_condition);
+    std::for_each(
+        boundary_conditions.springs.begin(), boundary_conditions.springs.end(), resolve_condition);
 
     for (const auto id : contact_parameters.boundary_ids)
       require_boundary(id, "Contact/Contact boundary ids");

@@ -199,7 +199,7 @@ namespace StabilizedLagrangian
     const UpdateFlags         flags =
         update_gradients | update_normal_vectors | update_quadrature_points | update_JxW_values;
     FEInterfaceValues<dim>           interface(*fe_u, face_quadrature, flags);
-    FEFaceValues<dim>                boundary(*fe_u, face_quadrature, flags);
+    FEFaceValues<dim>                boundary(*fe_u, face_quadrature, flags | update_values);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>> inside(face_quadrature.size()), outside(face_quadrature.size());
     const unsigned int          none = numbers::invalid_unsigned_int;
@@ -334,7 +334,9 @@ namespace StabilizedLagrangian
       return;
     face_values.reinit(cell, f);
     std::vector<Tensor<2, dim>> gradients(face_values.n_quadrature_points);
+    std::vector<Tensor<1, dim>> values(face_values.n_quadrature_points);
     face_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
+    face_values[FEValuesExtractors::Vector(0)].get_function_values(u, values);
     Vector<double> prescribed(dim), load(dim);
     double         residual = 0.;
     for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
@@ -347,6 +349,15 @@ namespace StabilizedLagrangian
               bc.traction->set_time(time);
               bc.traction->vector_value(x, prescribed);
               load += prescribed;
+            }
+        // a spring's traction −K (u_h − u_0)
+        for (auto &bc : boundary_conditions.springs)
+          if (bc.boundary_id == id)
+            {
+              bc.reference->set_time(time);
+              bc.reference->vector_value(x, prescribed);
+              for (unsigned int d = 0; d < dim; ++d)
+                load(d) -= bc.stiffness[d] * (values[q][d] - prescribed(d));
             }
         const Tensor<1, dim> traction =
             stress_at(cell, gradients[q], x) * face_values.normal_vector(q);

@@ -89,12 +89,17 @@ namespace StabilizedLagrangian
 
   template <int dim>
   std::vector<types::boundary_id>
-  ContactProblem<dim>::dirichlet_boundaries() const
+  ContactProblem<dim>::supported_boundaries() const
   {
     std::vector<types::boundary_id> ids;
+    const auto                      add = [&ids](const types::boundary_id id) {
+      if (std::find(ids.begin(), ids.end(), id) == ids.end())
+        ids.push_back(id);
+    };
     for (const auto &bc : boundary_conditions.dirichlet)
-      if (std::find(ids.begin(), ids.end(), bc.boundary_id) == ids.end())
-        ids.push_back(bc.boundary_id);
+      add(bc.boundary_id);
+    for (const auto &bc : boundary_conditions.springs)
+      add(bc.boundary_id);
     return ids;
   }
 
@@ -102,7 +107,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
   {
-    const std::vector<types::boundary_id> ids = dirichlet_boundaries();
+    const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());
     IndexSet                              claimed(dof_handler_u.n_dofs());
     for (const auto &bc : boundary_conditions.dirichlet)
@@ -120,6 +125,37 @@ namespace StabilizedLagrangian
             for (const auto i : dofs)
               reactions[b][c] += internal_force(i) - external_force(i) + contact_residual(i);
           }
+    // the springs' force on the body, ∫ −K (u − u_0)
+    if (!boundary_conditions.springs.empty())
+      {
+        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
+        FEFaceValues<dim>                   face_values(*fe_u,
+                                      face_gauss(fe_pair->displacement_degree() + 1),
+                                      update_values | update_quadrature_points | update_JxW_values);
+        std::vector<Tensor<1, dim>>         values(face_values.n_quadrature_points);
+        Vector<double>                      u_0(dim);
+        for (const auto &bc : boundary_conditions.springs)
+          {
+            bc.reference->set_time(time);
+            const unsigned int b = std::find(ids.begin(), ids.end(), bc.boundary_id) - ids.begin();
+            for (const auto &cell : dof_handler_u.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary() &&
+                      cell->face(f)->boundary_id() == bc.boundary_id)
+                    {
+                      face_values.reinit(cell, f);
+                      face_values[FEValuesExtractors::Vector(0)].get_function_values(u, values);
+                      for (unsigned int q = 0; q < values.size(); ++q)
+                        {
+                          bc.reference->vector_value(face_values.quadrature_point(q), u_0);
+                          for (unsigned int d = 0; d < dim; ++d)
+                            reactions[b][d] -=
+                                bc.stiffness[d] * (values[q][d] - u_0(d)) * face_values.JxW(q);
+                        }
+                    }
+          }
+      }
     stats.reactions.assign(ids.size(), {{0., 0., 0.}});
     for (unsigned int b = 0; b < ids.size(); ++b)
       {
@@ -295,11 +331,13 @@ namespace StabilizedLagrangian
   {
     // The peak memory of this rank so far (the largest mesh yet, with its
     // factorisation) scaled by the growth of the mesh, to the power of the
-    // direct solver's fill (about n log n in 2D, n^(4/3) in 3D), against the
-    // physical memory shared by the ranks of this node.
+    // direct solver's fill (about n log n in 2D, n^(4/3) in 3D; linear for the
+    // iterative solver, whose multigrid hierarchy and Krylov basis grow with
+    // the unknowns), against the physical memory shared by the ranks of this
+    // node.
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
-    const double fill = std::pow(growth, dim == 3 ? 4. / 3. : 1.1);
+    const double fill = iterative_solver ? growth : std::pow(growth, dim == 3 ? 4. / 3. : 1.1);
     MPI_Comm     node;
     MPI_Comm_split_type(mpi_communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
     const unsigned int ranks_on_node = Utilities::MPI::n_mpi_processes(node);
@@ -367,7 +405,7 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                          \
   template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);                   \
-  template std::vector<types::boundary_id> ContactProblem<dim>::dirichlet_boundaries() const;        \
+  template std::vector<types::boundary_id> ContactProblem<dim>::supported_boundaries() const;        \
   template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                      \
   template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
   template void                          ContactProblem<dim>::refine_mesh();                         \

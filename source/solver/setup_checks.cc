@@ -21,9 +21,9 @@ namespace StabilizedLagrangian
   {
     // The rigid motions (dim translations, then the rotations about the
     // body's centre, scaled by its size) restricted to the prescribed
-    // components of the Dirichlet vertices: G = Σ m mᵀ over those (vertex,
-    // component) pairs; the eigenvectors of G with a zero eigenvalue are the
-    // motions no Dirichlet condition holds.
+    // components of the Dirichlet vertices and the springs' held ones: G =
+    // Σ m mᵀ over those (vertex, component) pairs; the eigenvectors of G with
+    // a zero eigenvalue are the motions no support holds.
     if (!partner->is_rigid())
       return ""; // two bodies: each is held by the other or by its conditions
     const unsigned int n_rotations = dim == 2 ? 1 : 3;
@@ -35,10 +35,26 @@ namespace StabilizedLagrangian
       size = std::max(size, box.side_length(d));
     FullMatrix<double> gram(n_modes, n_modes);
     Vector<double>     m(n_modes);
+    // the supports: the prescribed components, and the springs' stiff ones
+    std::vector<std::pair<types::boundary_id, std::vector<bool>>> supports;
     for (const auto &bc : boundary_conditions.dirichlet)
-      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+      {
+        std::vector<bool> held(dim);
         for (unsigned int d = 0; d < dim; ++d)
-          if (bc.components[d])
+          held[d] = bc.components[d];
+        supports.emplace_back(bc.boundary_id, held);
+      }
+    for (const auto &bc : boundary_conditions.springs)
+      {
+        std::vector<bool> held(dim);
+        for (unsigned int d = 0; d < dim; ++d)
+          held[d] = bc.stiffness[d] > 0.;
+        supports.emplace_back(bc.boundary_id, held);
+      }
+    for (const auto &[boundary_id, held] : supports)
+      for_each_boundary_vertex(boundary_id, [&](const Point<dim> &vertex) {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (held[d])
             {
               const Tensor<1, dim> x = (vertex - centre) / size;
               m                      = 0.;
@@ -242,7 +258,7 @@ namespace StabilizedLagrangian
     double         increment = 0.;
     Vector<double> before(dim), after(dim);
     for (const auto &bc : boundary_conditions.dirichlet)
-      for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+      for_each_boundary_vertex(bc.boundary_id, [&](const Point<dim> &vertex) {
         for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
           {
             before = 0.;
@@ -276,7 +292,7 @@ namespace StabilizedLagrangian
       {
         double largest = 0.;
         bc.displacement->set_time(0.);
-        for_each_dirichlet_vertex(bc, [&](const Point<dim> &vertex) {
+        for_each_boundary_vertex(bc.boundary_id, [&](const Point<dim> &vertex) {
           // (not noted as a failure: the run never evaluates t = 0)
           bc.displacement->Functions::ParsedFunction<dim>::vector_value(vertex, value);
           for (unsigned int d = 0; d < dim; ++d)

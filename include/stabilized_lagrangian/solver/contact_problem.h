@@ -958,19 +958,18 @@ namespace StabilizedLagrangian
     double
     largest_dirichlet_increment();
     /**
-     * Call f(vertex) at every vertex of the faces of @p bc's boundary on this
-     * rank's cells (a vertex shared by several faces is visited once per face).
+     * Call f(vertex) at every vertex of the faces of boundary @p boundary_id
+     * on this rank's cells (a vertex shared by several faces is visited once
+     * per face).
      */
     template <typename Function>
     void
-    for_each_dirichlet_vertex(const Parameters::DirichletCondition<dim> &bc,
-                              const Function                            &f) const
+    for_each_boundary_vertex(const types::boundary_id boundary_id, const Function &f) const
     {
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int face : cell->face_indices())
-            if (cell->face(face)->at_boundary() &&
-                cell->face(face)->boundary_id() == bc.boundary_id)
+            if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == boundary_id)
               for (const unsigned int v : cell->face(face)->vertex_indices())
                 f(cell->face(face)->vertex(v));
     }
@@ -1254,15 +1253,29 @@ namespace StabilizedLagrangian
     void
     assemble_contact(const bool assemble_matrix);
     /**
-     * Add the tractions of the Neumann conditions on @p cell's faces to
-     * @p cell_rhs, and the external force they make to external_force.
+     * Add the tractions of the Neumann conditions and the springs on @p
+     * cell's faces to @p cell_rhs (the springs' stiffness to @p cell_matrix),
+     * and the external force they make to external_force.
      */
     void
-    add_neumann_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                      const std::vector<types::global_dof_index>           &dofs,
-                      FEFaceValues<dim>                                    &neumann_values,
-                      Vector<double>                                       &cell_rhs,
-                      Vector<double>                                       &cell_external);
+    add_boundary_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                       const std::vector<types::global_dof_index>           &dofs,
+                       const std::vector<double>                            &coefficients,
+                       FEFaceValues<dim>                                    &face_values,
+                       FullMatrix<double>                                   &cell_matrix,
+                       Vector<double>                                       &cell_rhs,
+                       Vector<double>                                       &cell_external,
+                       const bool                                            assemble_matrix);
+    /** The spring's traction −K (u − u_0) on a face: residual and stiffness. */
+    void
+    add_spring_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                            const unsigned int                                    face_no,
+                            const Parameters::SpringCondition<dim>               &spring,
+                            const std::vector<double>                            &coefficients,
+                            FEFaceValues<dim>                                    &fe_face_values,
+                            FullMatrix<double>                                   &cell_matrix,
+                            Vector<double>                                       &cell_rhs,
+                            const bool assemble_matrix) const;
     /** Add a local system to the global one (with the tangent predictor, if pending). */
     void
     add_to_global_system(const FullMatrix<double>                   &local_matrix,
@@ -1280,14 +1293,18 @@ namespace StabilizedLagrangian
     /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
-    /** The boundary ids with a Dirichlet condition, each once, in the order of the slots. */
-    std::vector<types::boundary_id>
-    dirichlet_boundaries() const;
     /**
-     * The reaction of each Dirichlet boundary of the converged state (the sum
-     * over its constrained DoFs of the residual without constraints: internal
-     * minus applied forces plus the contact terms), into stats.reactions. A
-     * DoF on two such boundaries counts for the first.
+     * The boundary ids with a Dirichlet condition or springs, each once: the
+     * Dirichlet ones in the order of their subsections, then the springs'.
+     */
+    std::vector<types::boundary_id>
+    supported_boundaries() const;
+    /**
+     * The reaction of each supported boundary of the converged state, into
+     * stats.reactions: the sum over its constrained DoFs of the residual
+     * without constraints (internal minus applied forces plus the contact
+     * terms; a DoF on two such boundaries counts for the first), plus the
+     * springs' force ∫ −K (u − u_0).
      */
     void
     compute_reactions(StepStatistics &stats) const;
