@@ -210,20 +210,25 @@ namespace StabilizedLagrangian
           const std::string name = Utilities::trim(line.substr(10));
           if (path.size() == 1 && path[0] == "Boundary conditions")
             {
-              const std::size_t space = name.find(' ');
-              const std::string kind  = name.substr(0, space);
-              const std::string label =
-                  space == std::string::npos ? "" : Utilities::trim(name.substr(space));
-              auto *list = kind == "Dirichlet" ? &sections.dirichlet
-                           : kind == "Neumann" ? &sections.neumann
-                           : kind == "Spring"  ? &sections.spring
-                                               : nullptr;
+              std::vector<std::string> *list = nullptr;
+              std::string               label;
+              for (auto &[kind, names] : {std::pair<std::string, std::vector<std::string> *>{
+                                              "Dirichlet ", &sections.dirichlet},
+                                          {"Neumann ", &sections.neumann},
+                                          {"Spring ", &sections.spring},
+                                          {"Rigid plate ", &sections.plate}})
+                if (name.rfind(kind, 0) == 0)
+                  {
+                    list  = names;
+                    label = Utilities::trim(name.substr(kind.size()));
+                  }
               if (list == nullptr || label.empty())
                 throw InputError("Boundary conditions/" + name +
                                  ": a boundary condition is a subsection 'Dirichlet <name>' "
                                  "(prescribed displacement), 'Neumann <name>' (prescribed "
-                                 "traction) or 'Spring <name>' (elastic support), with any "
-                                 "name, e.g. 'Dirichlet top'.");
+                                 "traction), 'Spring <name>' (elastic support) or 'Rigid "
+                                 "plate <name>' (a plate carrying a force), with any name, "
+                                 "e.g. 'Dirichlet top'.");
               if (std::find(list->begin(), list->end(), label) == list->end())
                 list->push_back(label);
             }
@@ -317,6 +322,22 @@ namespace StabilizedLagrangian
             prm.leave_subsection();
             prm.leave_subsection();
           }
+      for (const auto &name : sections.plate)
+        if (!declared("Rigid plate " + name))
+          {
+            prm.enter_subsection("Rigid plate " + name);
+            boundary_entry("tied to a rigid plate: in the plate's components it moves as one "
+                           "translation (the plate does not rotate)");
+            prm.declare_entry("Components",
+                              dim == 2 ? "y" : "z",
+                              Patterns::MultipleSelection(component_names<dim>()),
+                              "The components the plate ties; the others stay free (or take "
+                              "another condition).");
+            prm.enter_subsection("Force");
+            declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
       prm.leave_subsection();
     }
 
@@ -381,6 +402,7 @@ namespace StabilizedLagrangian
       dirichlet.clear();
       neumann.clear();
       springs.clear();
+      plates.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         const std::string entry    = "Boundary conditions/" + slot + "/" + name;
         auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
@@ -494,6 +516,29 @@ namespace StabilizedLagrangian
                                        stiffness,
                                        parse_function(section, "Reference displacement"),
                                        "Boundary conditions/" + section});
+            }
+          prm.leave_subsection();
+        }
+      for (const auto &name : sections.plate)
+        {
+          const std::string section = "Rigid plate " + name;
+          prm.enter_subsection(section);
+          if (const auto where = boundary(section))
+            {
+              std::vector<bool> mask(dim, false);
+              for (const auto &c : Utilities::split_string_list(prm.get("Components")))
+                mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
+              if (std::none_of(mask.begin(), mask.end(), [](const bool b) { return b; }))
+                throw InputError("Boundary conditions/" + section +
+                                 "/Components: empty, so the plate ties nothing; name the "
+                                 "components it carries (x, y" +
+                                 std::string(dim == 3 ? ", z" : "") + ").");
+              plates.push_back(RigidPlateCondition<dim>{where->first,
+                                                        where->second,
+                                                        ComponentMask(mask),
+                                                        parse_function(section, "Force"),
+                                                        name,
+                                                        "Boundary conditions/" + section});
             }
           prm.leave_subsection();
         }
@@ -909,7 +954,8 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::pattern(),
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
-      BoundaryConditions<dim>::declare_parameters(prm, ConditionSections{{"1"}, {"1"}, {"1"}});
+      BoundaryConditions<dim>::declare_parameters(prm,
+                                                  ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}});
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);

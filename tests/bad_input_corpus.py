@@ -308,6 +308,17 @@ text_case("springs of negative stiffness",
 text_case("springs on a boundary the mesh lacks",
           scene() + SPRING.replace("BOUNDARY", "9").replace("STIFFNESS", "1, 0"), "Spring side/Boundary id")
 
+PLATE = """subsection Boundary conditions
+  subsection Rigid plate top
+    set Boundary id = 3
+    set Components  = COMPONENTS
+  end
+end
+"""
+text_case("a rigid plate tying nothing", scene() + PLATE.replace("COMPONENTS", ""), "Rigid plate top/Components")
+text_case("a rigid plate where a Dirichlet condition holds",
+          scene() + PLATE.replace("COMPONENTS", "y"), "Rigid plate top: its boundary shares nodes with")
+
 text_case("two balls touching", scene(settings=[("Geometry/Model", "two balls"),
                                                 ("Geometry/two balls/Initial gap", "0")]), "Initial gap")
 

@@ -153,13 +153,29 @@ namespace StabilizedLagrangian
     };
 
     /**
+     * @brief A rigid plate tied to a boundary: the boundary's displacement in
+     * the plate's components is one translation U (the plate is guided: it
+     * does not rotate), and the plate carries a resultant force F(t).
+     */
+    template <int dim> struct RigidPlateCondition
+    {
+      types::boundary_id boundary_id;
+      std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
+      ComponentMask components;    ///< the components tied to U
+      std::shared_ptr<BoundaryFunction<dim>> force;   ///< F(t), N (N/mm of thickness in 2D)
+      std::string                            name;    ///< the subsection's name, for the columns
+      std::string                            section; ///< "Boundary conditions/Rigid plate <name>"
+    };
+
+    /**
      * @brief The condition subsections of `Boundary conditions` a parameter
-     * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`, any
-     * number of each (the names are the words after the kind).
+     * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`,
+     * `Rigid plate <name>`, any number of each (the names are the words after
+     * the kind).
      */
     struct ConditionSections
     {
-      std::vector<std::string> dirichlet, neumann, spring;
+      std::vector<std::string> dirichlet, neumann, spring, plate;
     };
 
     /**
@@ -173,13 +189,14 @@ namespace StabilizedLagrangian
     /**
      * @brief `Boundary conditions` subsection: a list of conditions of any
      * length, each its own subsection (`Dirichlet <name>`, `Neumann <name>`,
-     * `Spring <name>`).
+     * `Spring <name>`, `Rigid plate <name>`).
      */
     template <int dim> struct BoundaryConditions
     {
-      std::vector<DirichletCondition<dim>> dirichlet;
-      std::vector<NeumannCondition<dim>>   neumann;
-      std::vector<SpringCondition<dim>>    springs;
+      std::vector<DirichletCondition<dim>>  dirichlet;
+      std::vector<NeumannCondition<dim>>    neumann;
+      std::vector<SpringCondition<dim>>     springs;
+      std::vector<RigidPlateCondition<dim>> plates;
 
       /**
        * Declare the subsections @p sections names (those already declared

@@ -43,10 +43,10 @@ namespace StabilizedLagrangian
 
     /** The columns of statistics.csv, in their order (a new statistic is one entry). */
     std::vector<Column<StepRow>>
-    statistics_columns(const unsigned int                             dim,
-                       const std::vector<dealii::types::boundary_id> &reactions)
+    statistics_columns(const unsigned int dim, const StatisticsWriter::Supports &supports)
     {
-      const auto field = [](const std::string &name, const auto member, const int precision = 10) {
+      const auto &reactions = supports.reaction_boundaries;
+      const auto  field = [](const std::string &name, const auto member, const int precision = 10) {
         return member_column<StepRow>(name, member, precision);
       };
       using S                              = StepStatistics;
@@ -84,6 +84,20 @@ namespace StabilizedLagrangian
                [b, d](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.reactions[b][d];
                }});
+      for (unsigned int p = 0; p < supports.plates.size(); ++p)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const std::string axis(1, "xyz"[d]);
+            columns.push_back({"plate_" + supports.plates[p] + "_displacement_" + axis + "_mm",
+                               [p, d](std::ostream &out, const StepRow &row) {
+                                 out << std::setprecision(10)
+                                     << row.record.plate_displacements[p][d];
+                               }});
+            columns.push_back({"plate_" + supports.plates[p] + "_force_" + axis + "_N",
+                               [p, d](std::ostream &out, const StepRow &row) {
+                                 out << std::setprecision(10) << row.record.plate_forces[p][d];
+                               }});
+          }
       columns.push_back(field("folded_loops", &S::folded_loops));
       columns.push_back(field("adaptive_stops", &S::adaptive_stops));
       columns.push_back(field("friction_law_violations", &S::friction_law_violations));
@@ -143,33 +157,32 @@ namespace StabilizedLagrangian
   } // namespace
 
   void
-  StatisticsWriter::open(const std::string                             &directory,
-                         const unsigned int                             dim,
-                         const bool                                     is_root,
-                         const std::vector<dealii::types::boundary_id> &reactions)
+  StatisticsWriter::open(const std::string &directory,
+                         const unsigned int dim,
+                         const bool         is_root,
+                         const Supports    &columns_of)
   {
-    resume(directory, dim, is_root, reactions, State());
+    resume(directory, dim, is_root, columns_of, State());
     if (!root)
       return;
-    SafeFiles::write_atomically(statistics_path,
-                                header(statistics_columns(dim, reaction_boundaries)));
+    SafeFiles::write_atomically(statistics_path, header(statistics_columns(dim, supports)));
     SafeFiles::write_atomically(iterations_path, header(iterations_columns()));
   }
 
   void
-  StatisticsWriter::resume(const std::string                             &directory,
-                           const unsigned int                             dim,
-                           const bool                                     is_root,
-                           const std::vector<dealii::types::boundary_id> &reactions,
-                           const State                                   &state)
+  StatisticsWriter::resume(const std::string &directory,
+                           const unsigned int dim,
+                           const bool         is_root,
+                           const Supports    &columns_of,
+                           const State       &state)
   {
-    root                = is_root;
-    dimension           = dim;
-    reaction_boundaries = reactions;
-    cumulative_newton   = state.cumulative_newton;
-    cumulative_failed   = state.cumulative_failed;
-    statistics_path     = directory + "/statistics.csv";
-    iterations_path     = directory + "/iterations.csv";
+    root              = is_root;
+    dimension         = dim;
+    supports          = columns_of;
+    cumulative_newton = state.cumulative_newton;
+    cumulative_failed = state.cumulative_failed;
+    statistics_path   = directory + "/statistics.csv";
+    iterations_path   = directory + "/iterations.csv";
     if (root && state.statistics_bytes > 0)
       {
         SafeFiles::truncate(statistics_path, state.statistics_bytes);
@@ -199,8 +212,7 @@ namespace StabilizedLagrangian
     if (!root)
       return;
     std::ostringstream row;
-    write_line(
-        row, statistics_columns(dimension, reaction_boundaries), StepRow{s, cumulative_newton});
+    write_line(row, statistics_columns(dimension, supports), StepRow{s, cumulative_newton});
     std::ostringstream                 rows;
     const std::vector<Column<LoopRow>> columns = iterations_columns();
     for (const auto &r : s.inner_loops)

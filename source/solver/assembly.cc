@@ -64,6 +64,7 @@ namespace StabilizedLagrangian
     for (const auto &bc : boundary_conditions.springs)
       bc.reference->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
+    add_plate_forces();
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
@@ -330,6 +331,29 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::add_plate_forces()
+  {
+    // F acts on the plate, whose translation is the reference DoF: the tied
+    // DoFs' equations are summed into its row by the constraints
+    Vector<double> force(dim);
+    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+      {
+        auto &plate = boundary_conditions.plates[p];
+        plate.force->set_time(time);
+        plate.force->vector_value(Point<dim>(), force);
+        plate.force->check_finite(mpi_communicator);
+        for (unsigned int c = 0; c < dim; ++c)
+          if (plate_dofs[p][c] != numbers::invalid_dof_index &&
+              locally_owned.is_element(plate_dofs[p][c]))
+            {
+              system_rhs(plate_dofs[p][c]) -= force(c);
+              external_force(plate_dofs[p][c]) += force(c);
+            }
+      }
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::add_neumann_contribution(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       const unsigned int                                    face_no,
@@ -496,6 +520,7 @@ namespace StabilizedLagrangian
       FEFaceValues<dim> &,                                                                        \
       Vector<double> &) const;                                                                    \
   template void ContactProblem<dim>::assemble_contact(bool);                                      \
+  template void ContactProblem<dim>::add_plate_forces();                                          \
   template void ContactProblem<dim>::add_boundary_loads(                                          \
       const typename DoFHandler<dim>::active_cell_iterator &,                                     \
       const std::vector<types::global_dof_index> &,                                               \

@@ -489,7 +489,7 @@ namespace StabilizedLagrangian
       SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
     output_parameters.directory = cycle_directory(cycle);
     statistics.resume(
-        output_parameters.directory, dim, root, supported_boundaries(), statistics_state);
+        output_parameters.directory, dim, root, statistics_supports(), statistics_state);
     write_pvd();
     output_parameters.directory = base;
   }

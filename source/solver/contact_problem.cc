@@ -248,6 +248,8 @@ namespace StabilizedLagrangian
       require_boundary(bc.boundary_id, bc.section + "/Boundary id");
     for (const auto &bc : boundary_conditions.springs)
       require_boundary(bc.boundary_id, bc.section + "/Boundary id");
+    for (const auto &bc : boundary_conditions.plates)
+      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
   }
 
   template <int dim>
@@ -303,6 +305,8 @@ namespace StabilizedLagrangian
         boundary_conditions.neumann.begin(), boundary_conditions.neumann.end(), resolve_condition);
     std::for_each(
         boundary_conditions.springs.begin(), boundary_conditions.springs.end(), resolve_condition);
+    std::for_each(
+        boundary_conditions.plates.begin(), boundary_conditions.plates.end(), resolve_condition);
 
     for (const auto id : contact_parameters.boundary_ids)
       require_boundary(id, "Contact/Contact boundary ids");

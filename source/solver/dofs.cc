@@ -13,6 +13,7 @@
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <cmath>
+#include <limits>
 
 namespace StabilizedLagrangian
 {
@@ -94,6 +95,12 @@ namespace StabilizedLagrangian
         partner = std::move(master_surface);
       }
     locally_relevant.add_indices(partner->dofs());
+    // every rank couples to the rigid plates' reference DoFs
+    find_plate_dofs();
+    for (const auto &dofs : plate_dofs)
+      for (const auto dof : dofs)
+        if (dof != numbers::invalid_dof_index)
+          locally_relevant.add_index(dof);
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
@@ -119,6 +126,7 @@ namespace StabilizedLagrangian
     newton_constraints.reinit(locally_relevant);
     newton_constraints.merge(hanging_constraints);
     add_homogeneous_dirichlet_constraints(newton_constraints);
+    add_plate_constraints(newton_constraints);
     add_prescribed_slip_constraints(newton_constraints);
     newton_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
@@ -251,6 +259,75 @@ namespace StabilizedLagrangian
                                                Functions::ZeroFunction<dim>(dim),
                                                constraints,
                                                bc.components);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::find_plate_dofs()
+  {
+    plate_dofs.clear();
+    if (boundary_conditions.plates.empty())
+      return;
+    const IndexSet hanging     = DoFTools::extract_hanging_node_dofs(dof_handler_u);
+    const auto     on_boundary = [&](const types::boundary_id id, const unsigned int c) {
+      ComponentMask component(dim, false);
+      component.set(c, true);
+      return DoFTools::extract_boundary_dofs(dof_handler_u, component, {id});
+    };
+    for (const auto &plate : boundary_conditions.plates)
+      {
+        std::array<types::global_dof_index, dim> dofs;
+        dofs.fill(numbers::invalid_dof_index);
+        for (unsigned int c = 0; c < dim; ++c)
+          if (plate.components[c])
+            {
+              const IndexSet tied = on_boundary(plate.boundary_id, c);
+              for (const auto &bc : boundary_conditions.dirichlet)
+                if (bc.components[c])
+                  {
+                    const bool shared =
+                        !(tied & on_boundary(bc.boundary_id, c) & locally_owned_u).is_empty();
+                    if (Utilities::MPI::logical_or(shared, mpi_communicator))
+                      throw InputError(plate.section + ": its boundary shares nodes with " +
+                                       bc.section + " in component " + "xyz"[c] +
+                                       ", which would hold the plate; leave that component "
+                                       "out of one of them.");
+                  }
+              types::global_dof_index smallest =
+                  std::numeric_limits<types::global_dof_index>::max();
+              for (const auto dof : tied &locally_owned_u)
+                if (!hanging.is_element(dof))
+                  {
+                    smallest = dof;
+                    break;
+                  }
+              dofs[c] = Utilities::MPI::min(smallest, mpi_communicator);
+              if (dofs[c] == std::numeric_limits<types::global_dof_index>::max())
+                throw InputError(plate.section + "/Boundary id: the boundary has no node to tie.");
+            }
+        plate_dofs.push_back(dofs);
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &constraints) const
+  {
+    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (plate_dofs[p][c] != numbers::invalid_dof_index)
+          {
+            ComponentMask component(dim, false);
+            component.set(c, true);
+            // hanging nodes follow their parents, which are tied
+            for (const auto dof : DoFTools::extract_boundary_dofs(
+                     dof_handler_u, component, {boundary_conditions.plates[p].boundary_id}))
+              if (dof != plate_dofs[p][c] && !constraints.is_constrained(dof))
+                {
+                  constraints.add_line(dof);
+                  constraints.add_entry(dof, plate_dofs[p][c], 1.);
+                }
+          }
   }
 
   template <int dim>
@@ -436,6 +513,8 @@ namespace StabilizedLagrangian
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
       AffineConstraints<double> &) const;                                                         \
+  template void ContactProblem<dim>::find_plate_dofs();                                           \
+  template void ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &) const;    \
   template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
       const;                                                                                      \
   template void ContactProblem<dim>::setup_multiplier_numbering();                                \

@@ -330,6 +330,11 @@ namespace StabilizedLagrangian
       if (bc.boundary_id == id)
         for (unsigned int d = 0; d < dim; ++d)
           free[d] = free[d] && !bc.components[d];
+    // a rigid plate's tied components take the plate's distributed reaction
+    for (const auto &bc : boundary_conditions.plates)
+      if (bc.boundary_id == id)
+        for (unsigned int d = 0; d < dim; ++d)
+          free[d] = free[d] && !bc.components[d];
     if (std::none_of(free.begin(), free.end(), [](const bool b) { return b; }))
       return;
     face_values.reinit(cell, f);

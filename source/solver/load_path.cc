@@ -258,7 +258,7 @@ namespace StabilizedLagrangian
     const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     if (root)
       std::filesystem::create_directories(output_parameters.directory);
-    statistics.open(output_parameters.directory, dim, root, supported_boundaries());
+    statistics.open(output_parameters.directory, dim, root, statistics_supports());
     pvd_records.clear();
     active_set.clear();
     steps.restart();

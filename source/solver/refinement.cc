@@ -104,9 +104,36 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
+  StatisticsWriter::Supports
+  ContactProblem<dim>::statistics_supports() const
+  {
+    StatisticsWriter::Supports supports;
+    supports.reaction_boundaries = supported_boundaries();
+    for (const auto &plate : boundary_conditions.plates)
+      supports.plates.push_back(plate.name);
+    return supports;
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
   {
+    stats.plate_displacements.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
+    stats.plate_forces.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
+    Vector<double> force(dim);
+    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+      {
+        boundary_conditions.plates[p].force->set_time(time);
+        boundary_conditions.plates[p].force->vector_value(Point<dim>(), force);
+        for (unsigned int c = 0; c < dim; ++c)
+          if (plate_dofs[p][c] != numbers::invalid_dof_index)
+            {
+              const bool owned = locally_owned.is_element(plate_dofs[p][c]);
+              stats.plate_displacements[p][c] =
+                  Utilities::MPI::sum(owned ? solution(plate_dofs[p][c]) : 0., mpi_communicator);
+              stats.plate_forces[p][c] = force(c);
+            }
+      }
     const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());
     IndexSet                              claimed(dof_handler_u.n_dofs());
@@ -407,6 +434,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);                   \
   template std::vector<types::boundary_id> ContactProblem<dim>::supported_boundaries() const;        \
   template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                      \
+  template StatisticsWriter::Supports    ContactProblem<dim>::statistics_supports() const;           \
   template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
   template void                          ContactProblem<dim>::refine_mesh();                         \
   template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \

@@ -56,6 +56,10 @@ namespace StabilizedLagrangian
      * the order of StatisticsWriter's reaction boundaries
      */
     std::vector<std::array<double, 3>> reactions;
+    /** each rigid plate's translation U (mm), in the order of StatisticsWriter's plates */
+    std::vector<std::array<double, 3>> plate_displacements;
+    /** the force F(t) on each rigid plate (N; N/mm in 2D) */
+    std::vector<std::array<double, 3>> plate_forces;
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
     unsigned int folded_loops = 0;
     /**
@@ -97,6 +101,16 @@ namespace StabilizedLagrangian
   class StatisticsWriter
   {
   public:
+    /** @brief The supports whose columns the rows show. */
+    struct Supports
+    {
+      /** the Dirichlet and spring boundaries: reaction_boundary_<id>_<axis>_N */
+      std::vector<dealii::types::boundary_id> reaction_boundaries;
+      /** the rigid plates' names: plate_<name>_displacement_<axis>_mm, plate_<name>_force_<axis>_N
+       */
+      std::vector<std::string> plates;
+    };
+
     /** @brief What a checkpoint keeps to continue the files where it was taken. */
     struct State
     {
@@ -111,21 +125,21 @@ namespace StabilizedLagrangian
      * only); restarts the Newton counts.
      */
     void
-    open(const std::string                             &directory,
-         const unsigned int                             dim,
-         const bool                                     is_root,
-         const std::vector<dealii::types::boundary_id> &reaction_boundaries);
+    open(const std::string &directory,
+         const unsigned int dim,
+         const bool         is_root,
+         const Supports    &supports);
 
     /**
      * @brief Continue the files of @p directory from a checkpoint: cut them to the
      * rows it knew of (a killed run may have written more) and restore the counts.
      */
     void
-    resume(const std::string                             &directory,
-           const unsigned int                             dim,
-           const bool                                     is_root,
-           const std::vector<dealii::types::boundary_id> &reaction_boundaries,
-           const State                                   &state);
+    resume(const std::string &directory,
+           const unsigned int dim,
+           const bool         is_root,
+           const Supports    &supports,
+           const State       &state);
 
     /** @brief The state to store in a checkpoint. */
     State
@@ -152,11 +166,11 @@ namespace StabilizedLagrangian
   private:
     bool         root      = false;
     unsigned int dimension = 2;
-    /** the Dirichlet boundaries whose reactions the rows show */
-    std::vector<dealii::types::boundary_id> reaction_boundaries;
-    unsigned int                            cumulative_newton = 0;
-    unsigned int                            cumulative_failed = 0;
-    std::string                             statistics_path;
-    std::string                             iterations_path;
+    /** the supports whose columns the rows show */
+    Supports     supports;
+    unsigned int cumulative_newton = 0;
+    unsigned int cumulative_failed = 0;
+    std::string  statistics_path;
+    std::string  iterations_path;
   };
 } // namespace StabilizedLagrangian

@@ -1072,6 +1072,20 @@ namespace StabilizedLagrangian
     void
     add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
     /**
+     * Each rigid plate's reference DoF per tied component (the smallest index
+     * on its boundary that no Dirichlet condition or hanging node constrains),
+     * into plate_dofs; refuse a plate whose DoFs a Dirichlet condition holds in
+     * the same component.
+     */
+    void
+    find_plate_dofs();
+    /** u_i = u_ref on each rigid plate's boundary, per tied component. */
+    void
+    add_plate_constraints(AffineConstraints<double> &constraints) const;
+    /** Each rigid plate's force F(t) at its reference DoFs, in the residual and external_force. */
+    void
+    add_plate_forces();
+    /**
      * The sparsity pattern and the matrix: the bodies, and on Γc the slave,
      * multiplier and (with a deformable master) the paired master faces' DoFs,
      * with their neighbours so that small sliding keeps the pattern.
@@ -1299,12 +1313,16 @@ namespace StabilizedLagrangian
      */
     std::vector<types::boundary_id>
     supported_boundaries() const;
+    /** The supports statistics.csv has columns for: the supported boundaries, the rigid plates. */
+    StatisticsWriter::Supports
+    statistics_supports() const;
     /**
      * The reaction of each supported boundary of the converged state, into
      * stats.reactions: the sum over its constrained DoFs of the residual
      * without constraints (internal minus applied forces plus the contact
      * terms; a DoF on two such boundaries counts for the first), plus the
-     * springs' force ∫ −K (u − u_0).
+     * springs' force ∫ −K (u − u_0); and each rigid plate's translation and
+     * force.
      */
     void
     compute_reactions(StepStatistics &stats) const;
@@ -1557,8 +1575,13 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector internal_force;
     /** the contact terms of the residual, without constraints (for the reactions) */
     TrilinosWrappers::MPI::Vector contact_residual;
-    /** owned: the nodal external (Neumann) forces of the last assembly */
+    /** owned: the nodal external (Neumann, spring, plate) forces of the last assembly */
     TrilinosWrappers::MPI::Vector external_force;
+    /**
+     * The reference DoF of each rigid plate per component (its translation U),
+     * numbers::invalid_dof_index for the components the plate does not tie
+     */
+    std::vector<std::array<types::global_dof_index, dim>> plate_dofs;
     /**
      * owned, multiplier rows: the weight that turns the row's residual into a
      * length, ∫ψ_j on the λ_n rows and ∫ψ_j (χ_f s + (1 − χ_f) r_t) on the Λ rows
