@@ -328,7 +328,10 @@ for dim, (marking, (fraction, bulk, _)) in ((d, m) for m in MARKINGS.items() for
 
 lines += ["## 3. Accuracy targets", "",
           "`Adaptive refinement/Target pressure error`, `Criterion = estimator`, at most 30 cycles: "
-          "where the run stopped, what all its cycles cost, and the true error against the target.", "",
+          "where the run stopped, what all its cycles cost, and the true error against the target. "
+          "2D with the direct solver, 3D with the iterative one (`Linear solver/Method = iterative`: "
+          "GMRES with algebraic multigrid, doc/iterative_solver.md), whose memory grows linearly with "
+          "the DoFs.", "",
           "| scene | target | met | cycle | DoFs | pressure estimate | true pressure error | true / target "
           "| Newton iterations | wall time (s) |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
 for name in targets:
