@@ -396,6 +396,56 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    std::shared_ptr<BoundaryFunction<dim>>
+    parse_function(ParameterHandler &prm, const std::string &parent, const std::string &name)
+    {
+      const std::string entry    = parent + "/" + name;
+      auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
+      prm.enter_subsection(name);
+      const std::vector<std::string> variables =
+          Utilities::split_string_list(prm.get("Variable names"));
+      if (variables.size() != dim + 1)
+        throw InputError(entry + "/Variable names = '" + prm.get("Variable names") + "': a " +
+                         std::to_string(dim) + "D function needs " + std::to_string(dim + 1) +
+                         " variable names, the coordinates then time, e.g. '" +
+                         (dim == 2 ? "x,y,t" : "x,y,z,t") + "'.");
+      for (const auto &constant : Utilities::split_string_list(prm.get("Function constants")))
+        {
+          const std::string constant_name = Utilities::trim(constant.substr(0, constant.find('=')));
+          if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
+            throw InputError(entry + "/Function constants: '" + constant_name +
+                             "' is also a variable name (" + prm.get("Variable names") +
+                             "); give the constant another name.");
+        }
+      const std::string cannot_parse =
+          entry + ": the function could not be parsed (" + std::to_string(dim) +
+          " components separated by ';', variables x, y" + (dim == 3 ? ", z" : "") +
+          ", t, constants 'name=value, ...').";
+      try
+        {
+          function->parse_parameters(prm);
+          // the expression is compiled at its first evaluation: an undefined
+          // name shows up here, before anything is written, not mid-run. The
+          // probe point need not be on the boundary, so its value is not checked.
+          Vector<double> probe(dim);
+          function->Functions::ParsedFunction<dim>::vector_value(Point<dim>(), probe);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream message;
+          e.print_info(message);
+          throw InputError(cannot_parse + " " + Utilities::trim(message.str()));
+        }
+      catch (...)
+        {
+          // the expression parser's own exceptions are not std::exceptions
+          throw InputError(cannot_parse);
+        }
+      prm.leave_subsection();
+      return function;
+    }
+
+    template <int dim>
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
     {
@@ -404,51 +454,7 @@ namespace StabilizedLagrangian
       springs.clear();
       plates.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
-        const std::string entry    = "Boundary conditions/" + slot + "/" + name;
-        auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
-        prm.enter_subsection(name);
-        const std::vector<std::string> variables =
-            Utilities::split_string_list(prm.get("Variable names"));
-        if (variables.size() != dim + 1)
-          throw InputError(entry + "/Variable names = '" + prm.get("Variable names") + "': a " +
-                           std::to_string(dim) + "D function needs " + std::to_string(dim + 1) +
-                           " variable names, the coordinates then time, e.g. '" +
-                           (dim == 2 ? "x,y,t" : "x,y,z,t") + "'.");
-        for (const auto &constant : Utilities::split_string_list(prm.get("Function constants")))
-          {
-            const std::string constant_name =
-                Utilities::trim(constant.substr(0, constant.find('=')));
-            if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
-              throw InputError(entry + "/Function constants: '" + constant_name +
-                               "' is also a variable name (" + prm.get("Variable names") +
-                               "); give the constant another name.");
-          }
-        const std::string cannot_parse =
-            entry + ": the function could not be parsed (" + std::to_string(dim) +
-            " components separated by ';', variables x, y" + (dim == 3 ? ", z" : "") +
-            ", t, constants 'name=value, ...').";
-        try
-          {
-            function->parse_parameters(prm);
-            // the expression is compiled at its first evaluation: an undefined
-            // name shows up here, before anything is written, not mid-run. The
-            // probe point need not be on the boundary, so its value is not checked.
-            Vector<double> probe(dim);
-            function->Functions::ParsedFunction<dim>::vector_value(Point<dim>(), probe);
-          }
-        catch (const ExceptionBase &e)
-          {
-            std::ostringstream message;
-            e.print_info(message);
-            throw InputError(cannot_parse + " " + Utilities::trim(message.str()));
-          }
-        catch (...)
-          {
-            // the expression parser's own exceptions are not std::exceptions
-            throw InputError(cannot_parse);
-          }
-        prm.leave_subsection();
-        return function;
+        return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
       };
 
       // the conditions declared: those of the parsed text (and the template's)
@@ -949,6 +955,12 @@ namespace StabilizedLagrangian
       prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
       Geometry::declare_parameters<dim>(prm);
       Obstacles::declare_parameters<dim>(prm);
+      prm.enter_subsection("Obstacle");
+      prm.enter_subsection("Motion");
+      declare_function<dim>(prm,
+                            "mm: the obstacle's translation at time t; 0: fixed; only t is used");
+      prm.leave_subsection();
+      prm.leave_subsection();
       Materials::declare_parameters<dim>(prm);
       Contact::declare_parameters(prm,
                                   Discretization::Registry<dim>::pattern(),
@@ -1164,6 +1176,10 @@ namespace StabilizedLagrangian
       return prm.get_integer("Dimension");
     }
 
+    template std::shared_ptr<BoundaryFunction<2>>
+    parse_function<2>(ParameterHandler &, const std::string &, const std::string &);
+    template std::shared_ptr<BoundaryFunction<3>>
+    parse_function<3>(ParameterHandler &, const std::string &, const std::string &);
     template class BoundaryFunction<2>;
     template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;

@@ -319,6 +319,9 @@ text_case("a rigid plate tying nothing", scene() + PLATE.replace("COMPONENTS", "
 text_case("a rigid plate where a Dirichlet condition holds",
           scene() + PLATE.replace("COMPONENTS", "y"), "Rigid plate top: its boundary shares nodes with")
 
+text_case("an obstacle motion giving NaN", scene(settings=[("Obstacle/Motion/Function expression",
+                                                           "0; if(t < 0.5, 0, 0/0)")]), "Obstacle/Motion")
+
 text_case("two balls touching", scene(settings=[("Geometry/Model", "two balls"),
                                                 ("Geometry/two balls/Initial gap", "0")]), "Initial gap")
 

@@ -120,6 +120,15 @@ namespace StabilizedLagrangian
       mutable std::string failure;
     };
 
+    /**
+     * @brief The vector function (dim components of the coordinates and t) in
+     * subsection @p name of the current subsection, checked: its variable
+     * names, its constants, and that it parses; errors name @p parent/@p name.
+     */
+    template <int dim>
+    std::shared_ptr<BoundaryFunction<dim>>
+    parse_function(ParameterHandler &prm, const std::string &parent, const std::string &name);
+
     /** @brief A prescribed displacement on some components of a boundary. */
     template <int dim> struct DirichletCondition
     {

@@ -63,6 +63,7 @@ namespace StabilizedLagrangian
       bc.traction->check_finite(mpi_communicator);
     for (const auto &bc : boundary_conditions.springs)
       bc.reference->check_finite(mpi_communicator);
+    obstacle_motion->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
     add_plate_forces();
     if (assemble_matrix)

@@ -33,7 +33,10 @@ namespace StabilizedLagrangian
     output_parameters.parse_parameters(prm);
     adaptive_refinement.parse_parameters(prm);
 
-    obstacle  = Obstacles::create<dim>(prm);
+    obstacle = Obstacles::create<dim>(prm);
+    prm.enter_subsection("Obstacle");
+    obstacle_motion = Parameters::parse_function<dim>(prm, "Obstacle", "Motion");
+    prm.leave_subsection();
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
     friction_law = FrictionLaws::create(prm);

@@ -84,7 +84,7 @@ namespace StabilizedLagrangian
     locally_relevant.add_indices(locally_relevant_u);
     locally_relevant.add_indices(relevant_multipliers, n_u);
     if (contact_parameters.master_ids.empty())
-      partner = std::make_unique<Contact::RigidObstacle<dim>>(*obstacle);
+      partner = std::make_unique<Contact::RigidObstacle<dim>>(*obstacle, obstacle_motion);
     else
       {
         // every rank sees the whole master surface (its DoFs are ghosts)

@@ -207,6 +207,7 @@ namespace StabilizedLagrangian
         stats.cuts      = steps.consecutive_cuts();
         Timer step_clock;
         time = saved.time + step_size;
+        partner->set_time(saved.time, time);
         apply_dirichlet_values(time);
         if (!solve_load_step(stats))
           {

@@ -38,6 +38,11 @@ namespace StabilizedLagrangian
       int            master_face = -1;
       Point<dim - 1> master_reference_point;
       /**
+       * With a moving rigid obstacle: its translation when the pairing was
+       * made or last followed (Partner::follow() moves x² by what it moved since).
+       */
+      Tensor<1, dim> partner_offset;
+      /**
        * With a deformable master, at ξ in the configuration of the pairing
        * (Partner::follow()): the surface tangents τ_a = ∂x²/∂ξ_a, the second
        * derivatives ∂²x²/∂ξ_a∂ξ_b and the surface gradient ∂Δu²/∂ξ_a of the

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/bounding_box.h>
+#include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -11,6 +12,7 @@
 #include <stabilized_lagrangian/contact/pairing.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 
+#include <memory>
 #include <vector>
 
 namespace StabilizedLagrangian
@@ -67,6 +69,16 @@ namespace StabilizedLagrangian
        */
       virtual void
       update_configuration(const TrilinosWrappers::MPI::Vector &u) = 0;
+      /**
+       * @brief The load step from @p start to @p now: a moving partner takes
+       * its position at @p now, and follow() measures its motion from @p start.
+       */
+      virtual void
+      set_time(const double start, const double now)
+      {
+        (void)start;
+        (void)now;
+      }
 
       /**
        * @brief Move the frozen pairing's master point x²(ξ) with the partner's
@@ -127,20 +139,38 @@ namespace StabilizedLagrangian
 
     /**
      * @brief A rigid analytic obstacle (an `Obstacle` plug-in) as the contact
-     * partner: fixed in space, smooth, without DoFs.
+     * partner: smooth, without DoFs, fixed in space or translated by a given
+     * motion d(t) (`Obstacle/Motion`).
      */
     template <int dim> class RigidObstacle : public Partner<dim>
     {
     public:
-      explicit RigidObstacle(const Obstacles::Interface<dim> &obstacle)
+      /**
+       * @p motion: the translation d(t) (dim components; evaluated at the
+       * origin), or null for a fixed obstacle.
+       */
+      explicit RigidObstacle(const Obstacles::Interface<dim> &obstacle,
+                             std::shared_ptr<Function<dim>>   motion = nullptr)
           : obstacle(obstacle)
+          , motion(std::move(motion))
       {
       }
 
+      /** The obstacle translated by d: the pairing of x − d, moved by d. */
       Pairing<dim>
       project(const Point<dim> &x) const override
       {
-        return obstacle.project(x);
+        Pairing<dim> pairing = obstacle.project(x - offset_now);
+        pairing.master_point += offset_now;
+        pairing.partner_offset = offset_now;
+        return pairing;
+      }
+
+      void
+      set_time(const double start, const double now) override
+      {
+        offset_start = translation(start);
+        offset_now   = translation(now);
       }
 
       bool
@@ -166,12 +196,18 @@ namespace StabilizedLagrangian
       {
       }
 
+      /**
+       * The frozen pairing's master point moved with the obstacle; the slip is
+       * relative to the obstacle's translation since the step's start.
+       */
       Tensor<1, dim>
-      follow(Pairing<dim> &,
+      follow(Pairing<dim> &pairing,
              const TrilinosWrappers::MPI::Vector &,
              const TrilinosWrappers::MPI::Vector &) const override
       {
-        return Tensor<1, dim>();
+        pairing.master_point += offset_now - pairing.partner_offset;
+        pairing.partner_offset = offset_now;
+        return offset_now - offset_start;
       }
 
       const IndexSet &
@@ -216,7 +252,22 @@ namespace StabilizedLagrangian
       }
 
     private:
+      Tensor<1, dim>
+      translation(const double t) const
+      {
+        Tensor<1, dim> d;
+        if (motion)
+          {
+            motion->set_time(t);
+            for (unsigned int c = 0; c < dim; ++c)
+              d[c] = motion->value(Point<dim>(), c);
+          }
+        return d;
+      }
+
       const Obstacles::Interface<dim> &obstacle;
+      std::shared_ptr<Function<dim>>   motion;
+      Tensor<1, dim>                   offset_start, offset_now;
       const IndexSet                   no_dofs;
       const std::vector<unsigned int>  no_faces;
     };

@@ -1520,6 +1520,8 @@ namespace StabilizedLagrangian
 
     std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
+    /** `Obstacle/Motion`: the rigid obstacle's translation d(t) */
+    std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_motion;
     /** the default model first, then the slots in use; material_slots maps a body's id to one */
     std::vector<Materials::BodyMaterial<dim>>  materials;
     std::map<types::material_id, unsigned int> material_slots;
