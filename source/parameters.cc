@@ -232,6 +232,13 @@ namespace StabilizedLagrangian
               if (std::find(list->begin(), list->end(), label) == list->end())
                 list->push_back(label);
             }
+          if (path.size() == 1 && path[0] == "Contact" && name.rfind("Zone ", 0) == 0)
+            {
+              const std::string zone = Utilities::trim(name.substr(5));
+              if (std::find(sections.zones.begin(), sections.zones.end(), zone) ==
+                  sections.zones.end())
+                sections.zones.push_back(zone);
+            }
           path.push_back(name);
         }
       return sections;
@@ -264,6 +271,26 @@ namespace StabilizedLagrangian
                           "The names of the coordinates and the time in the expression.");
       }
     } // namespace
+
+    void
+    declare_contact_zones(ParameterHandler &prm, const std::vector<std::string> &names)
+    {
+      prm.enter_subsection("Contact");
+      for (const auto &name : names)
+        if (!prm.subsection_path_exists({"Zone " + name}))
+          {
+            prm.enter_subsection("Zone " + name);
+            prm.declare_entry("Boundary ids",
+                              "",
+                              Patterns::Anything(),
+                              "Contact boundaries (ids or names, some of `Contact boundary ids`) "
+                              "whose friction law is this zone's `Friction law` instead of "
+                              "Contact/Friction law; empty: the zone is unused.");
+            FrictionLaws::declare_parameters(prm);
+            prm.leave_subsection();
+          }
+      prm.leave_subsection();
+    }
 
     template <int dim>
     void
@@ -966,8 +993,9 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::pattern(),
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
-      BoundaryConditions<dim>::declare_parameters(prm,
-                                                  ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}});
+      BoundaryConditions<dim>::declare_parameters(
+          prm, ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}});
+      declare_contact_zones(prm, {"1"});
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
@@ -1140,8 +1168,10 @@ namespace StabilizedLagrangian
         parameter_file_directory = std::filesystem::path(text).parent_path().string();
       if (parameter_file_directory.empty())
         parameter_file_directory = ".";
-      const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
-      BoundaryConditions<dim>::declare_parameters(prm, condition_sections(content.text));
+      const ExpandedFile      content  = is_file ? read_file(text) : ExpandedFile{text, {}};
+      const ConditionSections sections = condition_sections(content.text);
+      BoundaryConditions<dim>::declare_parameters(prm, sections);
+      declare_contact_zones(prm, sections.zones);
       try
         {
           prm.parse_input_from_string(content.text);

@@ -185,7 +185,16 @@ namespace StabilizedLagrangian
     struct ConditionSections
     {
       std::vector<std::string> dirichlet, neumann, spring, plate;
+      /** the contact zones: `Contact/Zone <name>` */
+      std::vector<std::string> zones;
     };
+
+    /**
+     * @brief Declare `Contact/Zone <name>` for each of @p names (those not yet
+     * declared): the zone's contact boundaries and its own `Friction law`.
+     */
+    void
+    declare_contact_zones(ParameterHandler &prm, const std::vector<std::string> &names);
 
     /**
      * @brief The condition subsections of @p text (a parameter file with its

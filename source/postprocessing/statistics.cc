@@ -98,6 +98,13 @@ namespace StabilizedLagrangian
                                  out << std::setprecision(10) << row.record.plate_forces[p][d];
                                }});
           }
+      for (unsigned int z = 0; z < supports.zones.size(); ++z)
+        for (const unsigned int k : {0u, 1u})
+          columns.push_back(
+              {"zone_" + supports.zones[z] + (k == 0 ? "_normal_force_N" : "_tangential_force_N"),
+               [z, k](std::ostream &out, const StepRow &row) {
+                 out << std::setprecision(10) << row.record.zone_forces[z][k];
+               }});
       columns.push_back(field("folded_loops", &S::folded_loops));
       columns.push_back(field("adaptive_stops", &S::adaptive_stops));
       columns.push_back(field("friction_law_violations", &S::friction_law_violations));

@@ -15,6 +15,19 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   void
+  ContactProblem<dim>::assign_zones()
+  {
+    for (const auto &face : contact_faces)
+      {
+        const auto found = zone_of_boundary.find(face.cell->face(face.face_no)->boundary_id());
+        const unsigned int zone = found == zone_of_boundary.end() ? 0 : found->second;
+        for (unsigned int q = 0; q < face_quadrature(face).size(); ++q)
+          contact_states[face.first_point + q].zone = zone;
+      }
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::setup_contact_points()
   {
     contact_faces.clear();
@@ -30,9 +43,10 @@ namespace StabilizedLagrangian
     set_consistent_nodal_weights();
     set_dual_multiplier_basis();
     contact_states.assign(n_points, ContactPointState<dim>());
-    if (!friction_law->threshold_depends_on_pressure())
-      for (auto &state : contact_states)
-        state.friction_threshold = friction_law->threshold(0.);
+    assign_zones();
+    for (auto &state : contact_states)
+      if (!friction_law_of(state).threshold_depends_on_pressure())
+        state.friction_threshold = friction_law_of(state).threshold(0.);
     setup_nodal_conditions();
 
     // initial statuses from the initial configuration: touching points are in contact
@@ -287,6 +301,7 @@ namespace StabilizedLagrangian
       }
     contact_faces  = faces;
     contact_states = states;
+    assign_zones();
     return Utilities::MPI::max(changed, mpi_communicator) == 1;
   }
 
@@ -360,11 +375,11 @@ namespace StabilizedLagrangian
         state.pairing.tangential_components(k.step_increment),
         state.in_contact,
         state.friction_threshold,
-        friction_law->has_friction(),
+        friction_law_of(state).has_friction(),
         contact_parameters.r_n,
         contact_parameters.r_t,
         loops.linearised(Loop::friction)
-            ? friction_law->threshold_derivative(threshold_pressure(k.contact_pressure))
+            ? friction_law_of(state).threshold_derivative(threshold_pressure(k.contact_pressure))
             : 0.);
   }
 
@@ -378,7 +393,8 @@ namespace StabilizedLagrangian
       state.pairing = partner->project(k.position);
     k.step_increment -= partner->follow(state.pairing, ghosted_solution, step_start);
     if (what.threshold)
-      state.friction_threshold = friction_law->threshold(threshold_pressure(k.contact_pressure));
+      state.friction_threshold =
+          friction_law_of(state).threshold(threshold_pressure(k.contact_pressure));
     if (what.status)
       state.in_contact = status(state, k);
   }
@@ -406,6 +422,7 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                       \
+  template void ContactProblem<dim>::assign_zones();                                              \
   template void ContactProblem<dim>::setup_contact_points();                                      \
   template bool ContactProblem<dim>::finite_strain() const;                                       \
   template void ContactProblem<dim>::set_consistent_nodal_weights();                              \

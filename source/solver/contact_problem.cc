@@ -41,6 +41,25 @@ namespace StabilizedLagrangian
     prm.enter_subsection("Contact");
     friction_law = FrictionLaws::create(prm);
     prm.leave_subsection();
+    {
+      // the zones declared: those of the parsed text (and the template's)
+      std::ostringstream declared;
+      prm.print_parameters(declared, ParameterHandler::PRM);
+      for (const auto &name : Parameters::condition_sections(declared.str()).zones)
+        {
+          prm.enter_subsection("Contact");
+          prm.enter_subsection("Zone " + name);
+          const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
+          if (!boundaries.empty())
+            contact_zones.push_back(ContactZone{name, boundaries, FrictionLaws::create(prm)});
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      if (!contact_zones.empty() && weighted_complementarity())
+        throw InputError("Contact/Zone " + contact_zones[0].name +
+                         ": contact zones with their own friction law are built for the "
+                         "pointwise conditions only; use Contact/Complementarity = pointwise.");
+    }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
     pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
 
@@ -60,9 +79,7 @@ namespace StabilizedLagrangian
     // or Tresca law never moves the threshold
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
     loops.set_can_change(Loop::geometry, !(partner->is_flat() && !finite_strain()));
-    loops.set_can_change(Loop::friction,
-                         friction_law->has_friction() &&
-                             friction_law->threshold_depends_on_pressure());
+    loops.set_can_change(Loop::friction, any_friction() && any_pressure_dependent_threshold());
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
     warn_if_dirichlet_not_ramped();
@@ -313,6 +330,19 @@ namespace StabilizedLagrangian
 
     for (const auto id : contact_parameters.boundary_ids)
       require_boundary(id, "Contact/Contact boundary ids");
+    zone_of_boundary.clear();
+    for (unsigned int z = 0; z < contact_zones.size(); ++z)
+      for (const auto &entry : contact_zones[z].boundaries)
+        {
+          const std::string where = "Contact/Zone " + contact_zones[z].name + "/Boundary ids";
+          const auto        id    = Parameters::boundary_id_or_name(entry, where);
+          const types::boundary_id boundary = id ? *id : resolve(entry, where);
+          if (contact_parameters.boundary_ids.count(boundary) == 0)
+            throw InputError(where + ": boundary " + entry +
+                             " is not a contact boundary (Contact/Contact boundary ids).");
+          if (!zone_of_boundary.emplace(boundary, z + 1).second)
+            throw InputError(where + ": boundary " + entry + " is already in another zone.");
+        }
     for (const auto id : contact_parameters.master_ids)
       {
         require_boundary(id, "Contact/Master boundary ids");
@@ -369,6 +399,26 @@ namespace StabilizedLagrangian
                              materials[material_slots[id]].slot + ".");
           material_slots[id] = slot;
         }
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::any_friction() const
+  {
+    return friction_law->has_friction() ||
+           std::any_of(contact_zones.begin(), contact_zones.end(), [](const auto &zone) {
+             return zone.friction_law->has_friction();
+           });
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::any_pressure_dependent_threshold() const
+  {
+    return friction_law->threshold_depends_on_pressure() ||
+           std::any_of(contact_zones.begin(), contact_zones.end(), [](const auto &zone) {
+             return zone.friction_law->threshold_depends_on_pressure();
+           });
   }
 
   template class ContactProblem<2>;

@@ -50,7 +50,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::setup_dofs()
   {
     fe_u = fe_pair->displacement_element();
-    fe_m = fe_pair->multiplier_element(friction_law->has_friction() ? dim : 1);
+    fe_m = fe_pair->multiplier_element(any_friction() ? dim : 1);
     multiplier_dofs_on_face.assign(fe_m->reference_cell().n_faces(), {});
     for (unsigned int face = 0; face < multiplier_dofs_on_face.size(); ++face)
       {
@@ -334,7 +334,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
   {
-    if (!friction_law->has_friction() || !partner->is_flat())
+    if (!any_friction() || !partner->is_flat())
       return;
     const auto tangents = partner->project(Point<dim>()).tangents;
     // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)

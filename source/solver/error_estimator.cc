@@ -383,7 +383,6 @@ namespace StabilizedLagrangian
     std::unique_ptr<FEFaceValues<dim>>           face_values;
     const Quadrature<dim - 1>                   *rule = nullptr;
     std::vector<Tensor<2, dim>>                  gradients;
-    const bool                                   friction = friction_law->has_friction();
     std::vector<std::pair<unsigned int, double>> face_complementarity;
     for (const auto &face : contact_faces)
       {
@@ -419,10 +418,11 @@ namespace StabilizedLagrangian
                           E / h * std::pow(std::max(-gap, 0.), 2)) *
                          k.JxW;
             complementarity += lambda * gap * k.JxW;
-            if (friction)
+            if (friction_law_of(state).has_friction())
               {
-                const double threshold = friction_law->threshold(threshold_pressure(lambda));
-                const auto   slip      = state.pairing.tangential_components(k.step_increment);
+                const double threshold =
+                    friction_law_of(state).threshold(threshold_pressure(lambda));
+                const auto slip = state.pairing.tangential_components(k.step_increment);
                 residual += std::pow(std::max(tangential.norm() - threshold, 0.), 2) * k.JxW;
                 dissipation += (threshold * slip.norm() + tangential * slip) * k.JxW;
               }

@@ -288,9 +288,9 @@ namespace StabilizedLagrangian
             << " multiplier DoFs at hanging nodes of the contact boundary\n";
     if (!loops.can_change_quantity(Loop::geometry))
       pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
-    if (!friction_law->has_friction())
+    if (!any_friction())
       pcout << "  friction loop runs once per step: frictionless\n";
-    else if (!friction_law->threshold_depends_on_pressure())
+    else if (!any_pressure_dependent_threshold())
       pcout << "  friction loop runs once per step: fixed (Tresca) threshold\n";
     for (const auto &[name, loop] : {std::pair{"geometry", Loop::geometry},
                                      std::pair{"friction", Loop::friction},

@@ -37,6 +37,9 @@ namespace StabilizedLagrangian
     double         normal_force = 0.;
     Tensor<1, dim> total_force, tangential_force;
     double         largest_displacement = 0.;
+    // per zone (0: the default law's boundaries): normal force, tangential force vector
+    std::vector<double>         zone_normal(contact_zones.size() + 1, 0.);
+    std::vector<Tensor<1, dim>> zone_tangential(contact_zones.size() + 1);
     for (const auto i : locally_owned_u)
       largest_displacement = std::max(largest_displacement, std::abs(solution(i)));
     // the multiplier equations of the converged iterate (system_rhs is its residual)
@@ -63,13 +66,21 @@ namespace StabilizedLagrangian
       ++counts[point.status() == Contact::Status::stick ? 2 : 3];
       check.add_point(k.position - k.displacement,
                       point.tangential_traction().norm(),
-                      friction_law->threshold(threshold_pressure(k.contact_pressure)));
+                      friction_law_of(state).threshold(threshold_pressure(k.contact_pressure)));
       active_set.push_back(k.position - k.displacement);
       normal_force += k.JxW * point.normal_traction();
       total_force += k.JxW * point.normal_traction() * state.pairing.normal;
       tangential_force +=
           k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
+      zone_normal[state.zone] += k.JxW * point.normal_traction();
+      zone_tangential[state.zone] +=
+          k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
     });
+    stats.zone_forces.assign(contact_zones.size(), {{0., 0.}});
+    for (unsigned int z = 0; z < contact_zones.size(); ++z)
+      stats.zone_forces[z] = {
+          {Utilities::MPI::sum(zone_normal[z + 1], mpi_communicator),
+           Utilities::MPI::sum(zone_tangential[z + 1], mpi_communicator).norm()}};
     total_force += tangential_force;
     stats.contact_points            = Utilities::MPI::sum(counts[0], mpi_communicator);
     stats.points_in_contact         = Utilities::MPI::sum(counts[1], mpi_communicator);
@@ -111,6 +122,8 @@ namespace StabilizedLagrangian
     supports.reaction_boundaries = supported_boundaries();
     for (const auto &plate : boundary_conditions.plates)
       supports.plates.push_back(plate.name);
+    for (const auto &zone : contact_zones)
+      supports.zones.push_back(zone.name);
     return supports;
   }
 

@@ -60,6 +60,8 @@ namespace StabilizedLagrangian
     std::vector<std::array<double, 3>> plate_displacements;
     /** the force F(t) on each rigid plate (N; N/mm in 2D) */
     std::vector<std::array<double, 3>> plate_forces;
+    /** each contact zone's normal and tangential force (N; N/mm in 2D), as the totals' */
+    std::vector<std::array<double, 2>> zone_forces;
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
     unsigned int folded_loops = 0;
     /**
@@ -106,9 +108,10 @@ namespace StabilizedLagrangian
     {
       /** the Dirichlet and spring boundaries: reaction_boundary_<id>_<axis>_N */
       std::vector<dealii::types::boundary_id> reaction_boundaries;
-      /** the rigid plates' names: plate_<name>_displacement_<axis>_mm, plate_<name>_force_<axis>_N
-       */
+      /** the rigid plates' names: plate_<name>_{displacement_<axis>_mm,force_<axis>_N} */
       std::vector<std::string> plates;
+      /** the contact zones' names: zone_<name>_{normal,tangential}_force_N */
+      std::vector<std::string> zones;
     };
 
     /** @brief What a checkpoint keeps to continue the files where it was taken. */

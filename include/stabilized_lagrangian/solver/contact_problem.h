@@ -56,6 +56,8 @@ namespace StabilizedLagrangian
     Contact::Pairing<dim> pairing;
     double                friction_threshold = 0.;
     bool                  in_contact         = false;
+    /** the contact zone: 0 the default friction law, k the `Contact/Zone` k's */
+    unsigned int zone = 0;
   };
 
   /**
@@ -1531,9 +1533,34 @@ namespace StabilizedLagrangian
      */
     std::unique_ptr<Contact::Partner<dim>> partner;
     /** per contact face: the master faces whose DoFs the sparsity pattern couples to it */
-    std::vector<std::vector<unsigned int>>       sparsity_master_faces;
-    bool                                         sparsity_ready = false;
-    std::unique_ptr<FrictionLaws::Interface>     friction_law;
+    std::vector<std::vector<unsigned int>>   sparsity_master_faces;
+    bool                                     sparsity_ready = false;
+    std::unique_ptr<FrictionLaws::Interface> friction_law;
+    /** The contact zones (`Contact/Zone <name>`): name, boundary entries, own friction law. */
+    struct ContactZone
+    {
+      std::string                              name;
+      std::vector<std::string>                 boundaries; ///< ids or names, as given
+      std::unique_ptr<FrictionLaws::Interface> friction_law;
+    };
+    std::vector<ContactZone> contact_zones;
+    /** The zone (1-based; 0: the default law) of each contact boundary in a zone */
+    std::map<types::boundary_id, unsigned int> zone_of_boundary;
+    /** The friction law at a contact point: its zone's, or Contact/Friction law. */
+    const FrictionLaws::Interface &
+    friction_law_of(const ContactPointState<dim> &state) const
+    {
+      return state.zone == 0 ? *friction_law : *contact_zones[state.zone - 1].friction_law;
+    }
+    /** Whether some zone has friction (then Λ exists on the whole of Γc). */
+    bool
+    any_friction() const;
+    /** Whether some zone's threshold depends on the pressure (then the friction loop iterates). */
+    bool
+    any_pressure_dependent_threshold() const;
+    /** Each contact point's zone, from its face's boundary. */
+    void
+                                                 assign_zones();
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
     Materials::QuadratureHistory                 material_history;
     /** Set by an assembly that met a material state outside its admissible range. */
