@@ -10,7 +10,8 @@ would change the tangential force by mu F_n.
 - prm/moving_punch.prm: a rigid cylindrical punch (`ball`, curved: the geometry loop pairs anew)
   pressed into a block held at its top, then slid along it with friction mu = 0.2;
 - the same with a plane (flat: the pairing is frozen for the step and follows the obstacle);
-both with the generalized Newton, the punch also with the nested loops (their geometry and
+both with the generalized Newton, the punch also with the nested loops. The punch's surface
+written per step (obstacle.pvd) is where the motion puts it (their geometry and
 friction loops stop at their tolerance 1e-4 on the change of the displacement and the threshold,
 so the forces agree to that tolerance: 1e-4 of the largest; measured 7.5e-6)."""
 import os
@@ -57,4 +58,26 @@ for name, moving, moved, loops, tolerance in (
         # below mu by the curvature, 1 - cos(a/R) = 4e-4 here)
         check(all(abs(row["tangential_force_N"] - 0.2 * row["normal_force_N"]) <= 1e-6 * row["normal_force_N"]
                   for row in slid), f"{name}: F_t = mu F_n at those steps")
+
+# the obstacle in the output: obstacle.pvd lists a surface per step, moved by d(t)
+out = os.path.join(workdir, "punch_output")
+sltest.run(executable, punch + "\nsubsection Output\n  set Output directory = output\nend\n", out)
+with open(os.path.join(out, "output", "obstacle.pvd")) as f:
+    listed = f.read().count("obstacle_")
+check(listed == 11, f"obstacle.pvd lists the surface at the 11 output times ({listed})")
+try:
+    import vtk
+    bounds = []
+    for step in (0, 10):
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, "output", f"obstacle_{step:05d}.vtu"))
+        reader.Update()
+        bounds.append(reader.GetOutput().GetBounds())
+    # the circle of radius 50 about (0, -50), then moved by d(1) = (2, 0.3); float32 coordinates
+    expected = [(-50, 50, -100, 0), (-48, 52, -99.7, 0.3)]
+    worst = max(abs(b[k] - e[k]) for b, e in zip(bounds, expected) for k in range(4))
+    check(worst <= 1e-4, f"obstacle_00000.vtu and obstacle_00010.vtu: the punch at rest and moved by "
+          f"(2, 0.3) mm (bounds off by {worst:.1e} mm)")
+except ImportError:
+    check(False, "python3-vtk9 is needed to read the VTU")
 check.finish()

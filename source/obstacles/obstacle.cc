@@ -2,6 +2,9 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria_description.h>
+
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 
 namespace StabilizedLagrangian
@@ -84,6 +87,30 @@ namespace StabilizedLagrangian
         return true;
       }
 
+      /** The body's box projected on the plane, enlarged by a fifth: a segment or a rectangle. */
+      void
+      make_surface_mesh(Triangulation<dim - 1, dim> &surface,
+                        const BoundingBox<dim>      &body) const override
+      {
+        const Point<dim> centre = project(body.center()).master_point;
+        double           size   = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          size = std::max(size, body.side_length(d));
+        const double            half = 0.6 * size;
+        std::vector<Point<dim>> vertices;
+        for (unsigned int v = 0; v < (1u << (dim - 1)); ++v)
+          {
+            Point<dim> vertex = centre;
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              vertex += ((v >> a) & 1 ? half : -half) * tangents[a];
+            vertices.push_back(vertex);
+          }
+        std::vector<CellData<dim - 1>> cells(1);
+        for (unsigned int v = 0; v < vertices.size(); ++v)
+          cells[0].vertices[v] = v;
+        surface.create_triangulation(vertices, cells, SubCellData());
+      }
+
     private:
       static Tensor<1, dim>
       nonzero_normal(const ParameterHandler &prm)
@@ -160,6 +187,15 @@ namespace StabilizedLagrangian
       is_flat() const override
       {
         return false;
+      }
+
+      /** The whole circle (2D) or sphere (3D), refined until its facets look round. */
+      void
+      make_surface_mesh(Triangulation<dim - 1, dim> &surface,
+                        const BoundingBox<dim> &) const override
+      {
+        GridGenerator::hyper_sphere(surface, center, radius);
+        surface.refine_global(dim == 2 ? 5 : 4);
       }
 
     private:

@@ -7,6 +7,8 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -395,6 +398,62 @@ namespace StabilizedLagrangian
     MPI_Barrier(mpi_communicator);
     pvd_records.emplace_back(t, record);
     write_pvd();
+    write_obstacle(step, t);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::write_obstacle(const unsigned int step, const double t) const
+  {
+    if (!partner->is_rigid())
+      return;
+    // the body's bounding box, over every rank's cells
+    Point<dim> low, high;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        low[d]  = std::numeric_limits<double>::max();
+        high[d] = -std::numeric_limits<double>::max();
+      }
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              low[d]  = std::min(low[d], cell->vertex(v)[d]);
+              high[d] = std::max(high[d], cell->vertex(v)[d]);
+            }
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        low[d]  = Utilities::MPI::min(low[d], mpi_communicator);
+        high[d] = Utilities::MPI::max(high[d], mpi_communicator);
+      }
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    Triangulation<dim - 1, dim> surface;
+    obstacle->make_surface_mesh(surface, BoundingBox<dim>(std::make_pair(low, high)));
+    Tensor<1, dim> translation;
+    obstacle_motion->set_time(t);
+    for (unsigned int c = 0; c < dim; ++c)
+      translation[c] = obstacle_motion->value(Point<dim>(), c);
+    GridTools::shift(translation, surface);
+    DataOut<dim - 1, dim> data_out;
+    data_out.attach_triangulation(surface);
+    data_out.build_patches();
+    std::ostringstream vtu;
+    data_out.write_vtu(vtu);
+    const std::string name = "obstacle_" + Utilities::int_to_string(step, 5) + ".vtu";
+    SafeFiles::write_atomically(output_parameters.directory + "/" + name, vtu.str());
+    // the same steps as solution.pvd
+    std::vector<std::pair<double, std::string>> records;
+    for (const auto &[time, record] : pvd_records)
+      {
+        const auto digits = record.find_last_of('_');
+        records.emplace_back(
+            time, "obstacle" + record.substr(digits, record.rfind('.') - digits) + ".vtu");
+      }
+    std::ostringstream pvd;
+    DataOutBase::write_pvd_record(pvd, records);
+    SafeFiles::write_atomically(output_parameters.directory + "/obstacle.pvd", pvd.str());
   }
 
   template <int dim>
@@ -457,6 +516,7 @@ namespace StabilizedLagrangian
         return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
       };
       return (starts("solution") && (ends(".vtu") || ends(".pvtu") || ends(".pvd"))) ||
+             (starts("obstacle") && (ends(".vtu") || ends(".pvd"))) ||
              (starts("profile-") && ends(".csv")) || starts("cycle-") || starts("checkpoint") ||
              name == "statistics.csv" || name == "iterations.csv" || name == "run_summary.csv" ||
              name == "refinement_cycles.csv" || name == "parameters.prm" || ends(".tmp");
@@ -514,6 +574,10 @@ namespace StabilizedLagrangian
   }
 
   // the class itself is instantiated once, in contact_problem.cc
+  template void
+  ContactProblem<2>::write_obstacle(unsigned int, double) const;
+  template void
+  ContactProblem<3>::write_obstacle(unsigned int, double) const;
   template void
   ContactProblem<2>::output_results(unsigned int, double);
   template void

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <deal.II/base/bounding_box.h>
+
+#include <deal.II/grid/tria.h>
+
 #include <stabilized_lagrangian/contact/pairing.h>
 #include <stabilized_lagrangian/plugins.h>
 
@@ -31,6 +35,15 @@ namespace StabilizedLagrangian
        */
       virtual bool
       is_flat() const = 0;
+
+      /**
+       * @brief A mesh of the obstacle's surface for the output, at rest: the
+       * whole surface where it is bounded (a ball), else the part facing the
+       * body's bounding box @p body, enlarged by a fifth (a plane).
+       */
+      virtual void
+      make_surface_mesh(Triangulation<dim - 1, dim> &surface,
+                        const BoundingBox<dim>      &body) const = 0;
     };
 
     /** @brief The registry of obstacles for dimension @p dim. */

@@ -1490,6 +1490,13 @@ namespace StabilizedLagrangian
     /** Write solution.pvd from pvd_records, atomically (rank 0). */
     void
     write_pvd() const;
+    /**
+     * Write the rigid obstacle's surface at time @p t, moved by its motion, as
+     * obstacle_<step>.vtu, and obstacle.pvd beside solution.pvd (rank 0;
+     * nothing for a deformable master).
+     */
+    void
+    write_obstacle(const unsigned int step, const double t) const;
     /** The history fields of every material, each name once. */
     std::vector<std::string>
     history_field_names() const;
