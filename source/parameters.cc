@@ -216,7 +216,8 @@ namespace StabilizedLagrangian
                                               "Dirichlet ", &sections.dirichlet},
                                           {"Neumann ", &sections.neumann},
                                           {"Spring ", &sections.spring},
-                                          {"Rigid plate ", &sections.plate}})
+                                          {"Rigid plate ", &sections.plate},
+                                          {"Point load ", &sections.point_load}})
                 if (name.rfind(kind, 0) == 0)
                   {
                     list  = names;
@@ -226,8 +227,9 @@ namespace StabilizedLagrangian
                 throw InputError("Boundary conditions/" + name +
                                  ": a boundary condition is a subsection 'Dirichlet <name>' "
                                  "(prescribed displacement), 'Neumann <name>' (prescribed "
-                                 "traction), 'Spring <name>' (elastic support) or 'Rigid "
-                                 "plate <name>' (a plate carrying a force), with any name, "
+                                 "traction), 'Spring <name>' (elastic support), 'Rigid "
+                                 "plate <name>' (a plate carrying a force) or 'Point load <name>', "
+                                 "with any name, "
                                  "e.g. 'Dirichlet top'.");
               if (std::find(list->begin(), list->end(), label) == list->end())
                 list->push_back(label);
@@ -365,6 +367,20 @@ namespace StabilizedLagrangian
             prm.leave_subsection();
             prm.leave_subsection();
           }
+      for (const auto &name : sections.point_load)
+        if (!declared("Point load " + name))
+          {
+            prm.enter_subsection("Point load " + name);
+            prm.declare_entry("Point",
+                              "",
+                              Patterns::Anything(),
+                              "Where the force acts: the coordinates of a vertex of the mesh "
+                              "(mm); empty: unused.");
+            prm.enter_subsection("Force");
+            declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
       prm.leave_subsection();
     }
 
@@ -480,6 +496,7 @@ namespace StabilizedLagrangian
       neumann.clear();
       springs.clear();
       plates.clear();
+      point_loads.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
       };
@@ -572,6 +589,33 @@ namespace StabilizedLagrangian
                                                         parse_function(section, "Force"),
                                                         name,
                                                         "Boundary conditions/" + section});
+            }
+          prm.leave_subsection();
+        }
+      for (const auto &name : sections.point_load)
+        {
+          const std::string section = "Boundary conditions/Point load " + name;
+          prm.enter_subsection("Point load " + name);
+          const std::string text = Utilities::trim(prm.get("Point"));
+          if (!text.empty())
+            {
+              const auto parts = Utilities::split_string_list(text);
+              Point<dim> point;
+              try
+                {
+                  const auto values = Utilities::string_to_double(parts);
+                  if (values.size() != dim)
+                    throw std::invalid_argument("count");
+                  for (unsigned int d = 0; d < dim; ++d)
+                    point[d] = values[d];
+                }
+              catch (...)
+                {
+                  throw InputError(section + "/Point = '" + text + "': " + std::to_string(dim) +
+                                   " comma-separated coordinates (mm) of a vertex of the mesh.");
+                }
+              point_loads.push_back(
+                  PointLoad<dim>{point, parse_function("Point load " + name, "Force"), section});
             }
           prm.leave_subsection();
         }
@@ -994,7 +1038,7 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
       BoundaryConditions<dim>::declare_parameters(
-          prm, ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}});
+          prm, ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}, {"1"}});
       declare_contact_zones(prm, {"1"});
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);

@@ -176,6 +176,14 @@ namespace StabilizedLagrangian
       std::string                            section; ///< "Boundary conditions/Rigid plate <name>"
     };
 
+    /** @brief A force F(t) on one node of the mesh, the vertex at a given point. */
+    template <int dim> struct PointLoad
+    {
+      Point<dim>                             point;   ///< where: a vertex of the mesh (mm)
+      std::shared_ptr<BoundaryFunction<dim>> force;   ///< F(t), N (N/mm of thickness in 2D)
+      std::string                            section; ///< "Boundary conditions/Point load <name>"
+    };
+
     /**
      * @brief The condition subsections of `Boundary conditions` a parameter
      * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`,
@@ -184,7 +192,7 @@ namespace StabilizedLagrangian
      */
     struct ConditionSections
     {
-      std::vector<std::string> dirichlet, neumann, spring, plate;
+      std::vector<std::string> dirichlet, neumann, spring, plate, point_load;
       /** the contact zones: `Contact/Zone <name>` */
       std::vector<std::string> zones;
     };
@@ -215,6 +223,7 @@ namespace StabilizedLagrangian
       std::vector<NeumannCondition<dim>>    neumann;
       std::vector<SpringCondition<dim>>     springs;
       std::vector<RigidPlateCondition<dim>> plates;
+      std::vector<PointLoad<dim>>           point_loads;
 
       /**
        * Declare the subsections @p sections names (those already declared

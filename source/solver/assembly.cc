@@ -351,6 +351,26 @@ namespace StabilizedLagrangian
               external_force(plate_dofs[p][c]) += force(c);
             }
       }
+    // the point loads at their vertices' DoFs, through the constraints (a
+    // prescribed component takes the load into its reaction, a plate's tied
+    // one passes it to the plate)
+    for (unsigned int p = 0; p < boundary_conditions.point_loads.size(); ++p)
+      {
+        auto &load = boundary_conditions.point_loads[p];
+        load.force->set_time(time);
+        load.force->vector_value(Point<dim>(), force);
+        load.force->check_finite(mpi_communicator);
+        if (!locally_owned.is_element(point_load_dofs[p][0]))
+          continue;
+        const std::vector<types::global_dof_index> dofs(point_load_dofs[p].begin(),
+                                                        point_load_dofs[p].end());
+        Vector<double>                             load_rhs(dim);
+        for (unsigned int c = 0; c < dim; ++c)
+          load_rhs(c) = -force(c);
+        newton_constraints.distribute_local_to_global(load_rhs, dofs, system_rhs);
+        for (unsigned int c = 0; c < dim; ++c)
+          external_force(dofs[c]) += force(c);
+      }
   }
 
   template <int dim>

@@ -131,6 +131,7 @@ namespace StabilizedLagrangian
     newton_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
     newton_constraints.close();
+    find_point_load_dofs();
 
     system_rhs.reinit(locally_owned, mpi_communicator);
     solution.reinit(locally_owned, mpi_communicator);
@@ -306,6 +307,59 @@ namespace StabilizedLagrangian
                 throw InputError(plate.section + "/Boundary id: the boundary has no node to tie.");
             }
         plate_dofs.push_back(dofs);
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::find_point_load_dofs()
+  {
+    point_load_dofs.clear();
+    if (boundary_conditions.point_loads.empty())
+      return;
+    double size = 0.;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        size = std::max(size, cell->diameter());
+    size                    = Utilities::MPI::max(size, mpi_communicator);
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    for (const auto &load : boundary_conditions.point_loads)
+      {
+        double                                   nearest = std::numeric_limits<double>::max();
+        std::array<types::global_dof_index, dim> dofs;
+        Point<dim>                               vertex;
+        for (const auto &cell : dof_handler_u.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              if (cell->vertex(v).distance(load.point) < nearest)
+                {
+                  nearest = cell->vertex(v).distance(load.point);
+                  vertex  = cell->vertex(v);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    dofs[c] = cell->vertex_dof_index(v, c);
+                }
+        const double       closest = Utilities::MPI::min(nearest, mpi_communicator);
+        const unsigned int owner   = Utilities::MPI::min(
+            nearest == closest ? rank : numbers::invalid_unsigned_int, mpi_communicator);
+        dofs   = Utilities::MPI::broadcast(mpi_communicator, dofs, owner);
+        vertex = Utilities::MPI::broadcast(mpi_communicator, vertex, owner);
+        // (1e-6 of the largest cell: a point written with 6 significant digits)
+        if (closest > 1e-6 * size)
+          {
+            std::ostringstream message;
+            message << load.section << "/Point: no vertex of the mesh there; the nearest is ("
+                    << vertex << "), " << closest << " mm away. A point load acts on a vertex.";
+            throw InputError(message.str());
+          }
+        bool hanging = false;
+        for (unsigned int c = 0; c < dim; ++c)
+          hanging |=
+              locally_owned_u.is_element(dofs[c]) && hanging_constraints.is_constrained(dofs[c]);
+        if (Utilities::MPI::logical_or(hanging, mpi_communicator))
+          throw InputError(load.section +
+                           "/Point: the vertex there hangs on a refined neighbour; put the load "
+                           "on a vertex of the coarser cells.");
+        point_load_dofs.push_back(dofs);
       }
   }
 
@@ -514,6 +568,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::find_plate_dofs();                                           \
+  template void ContactProblem<dim>::find_point_load_dofs();                                      \
   template void ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &) const;    \
   template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
       const;                                                                                      \

@@ -1618,6 +1618,14 @@ namespace StabilizedLagrangian
      * numbers::invalid_dof_index for the components the plate does not tie
      */
     std::vector<std::array<types::global_dof_index, dim>> plate_dofs;
+    /** The DoFs of each point load's vertex, per component */
+    std::vector<std::array<types::global_dof_index, dim>> point_load_dofs;
+    /**
+     * Each point load's vertex: the vertex of the mesh nearest to its Point,
+     * refused when it is not at the point (to 1e-6 of the body's size) or hangs.
+     */
+    void
+    find_point_load_dofs();
     /**
      * owned, multiplier rows: the weight that turns the row's residual into a
      * length, ∫ψ_j on the λ_n rows and ∫ψ_j (χ_f s + (1 − χ_f) r_t) on the Λ rows
