@@ -237,7 +237,9 @@ namespace StabilizedLagrangian
      * whose curved side touches the plane y = 0 (z = 0) at the origin, for the Hertz
      * problem. The flat side (id 3) is at height R; the curved faces within
      * `Contact zone radius` of the origin get id 2, the rest id 0. Cells near
-     * the origin are refined `Local refinements` times.
+     * the origin are refined `Local refinements` times. With `Symmetry planes`
+     * only x ≥ 0 (and y ≥ 0 in 3D) is meshed, from deal.II's quarter ball: the
+     * planes x = 0 (id 4) and y = 0 (id 5, 3D) are the model's symmetry planes.
      */
     template <int dim> class HalfBall : public Interface<dim>
     {
@@ -247,6 +249,13 @@ namespace StabilizedLagrangian
       {
         declare_ball_parameters(
             prm, "Distance (mm) from the contact point within which cells are refined.");
+        prm.declare_entry("Symmetry planes",
+                          "false",
+                          Patterns::Bool(),
+                          "true: mesh only x >= 0 (and y >= 0 in 3D), a half (2D) or quarter "
+                          "(3D) model whose planes x = 0 (id 4) and y = 0 (id 5) are symmetry "
+                          "planes: hold their normal displacement with Dirichlet conditions. "
+                          "Forces are then those of the half (quarter) body.");
         declare_cell_shape(prm);
       }
 
@@ -256,6 +265,7 @@ namespace StabilizedLagrangian
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , contact_radius(prm.get_double("Contact zone radius"))
+          , symmetric(prm.get_bool("Symmetry planes"))
           , simplex(read_cell_shape<dim>(
                 prm, "half ball", local_refinements > 0 && refinement_radius > 0.))
       {
@@ -272,6 +282,11 @@ namespace StabilizedLagrangian
       void
       create_mesh(Triangulation<dim> &triangulation) const override
       {
+        if (symmetric)
+          {
+            create_symmetric_mesh(triangulation);
+            return;
+          }
         GridGenerator::half_hyper_ball(triangulation, Point<dim>(), radius);
         double min_x = 0.;
         for (const auto &v : triangulation.get_vertices())
@@ -311,9 +326,60 @@ namespace StabilizedLagrangian
       }
 
     private:
+      /** The half (2D) or quarter (3D) model: ids 4 and 5 on its symmetry planes. */
+      void
+      create_symmetric_mesh(Triangulation<dim> &triangulation) const
+      {
+        GridGenerator::quarter_hyper_ball(triangulation, Point<dim>(), radius);
+        // a rotation taking the orthant below the centre, (x, y) -> (y, -x)
+        // and (x, y, z) -> (y, x, -z), then the shift putting its lowest
+        // point at the origin
+        Point<dim> center;
+        center[dim - 1] = radius;
+        GridTools::transform(
+            [&](const Point<dim> &p) {
+              Point<dim> q;
+              q[0] = p[1];
+              if (dim == 2)
+                q[1] = -p[0];
+              else
+                {
+                  q[1]       = p[0];
+                  q[dim - 1] = -p[dim - 1];
+                }
+              return q + center;
+            },
+            triangulation);
+        triangulation.set_manifold(0, SphericalManifold<dim>(center));
+        triangulation.refine_global(global_refinements);
+        if (simplex)
+          split_into_simplices(triangulation);
+        refine_near(triangulation, Point<dim>(), refinement_radius, local_refinements);
+        const double tolerance = 1e-8 * radius;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                const Point<dim> x = face->center();
+                if (std::abs(x[0]) < tolerance)
+                  face->set_boundary_id(4);
+                else if (dim == 3 && std::abs(x[1]) < tolerance)
+                  face->set_boundary_id(5);
+                else if (std::abs(x[dim - 1] - radius) < tolerance)
+                  face->set_boundary_id(3);
+                else if (x.norm() < contact_radius)
+                  face->set_boundary_id(2);
+                else
+                  face->set_boundary_id(0);
+              }
+        if (dim == 3)
+          close_contact_zone(triangulation, 2);
+      }
+
       const double       radius;
       const unsigned int global_refinements, local_refinements;
       const double       refinement_radius, contact_radius;
+      const bool         symmetric;
       const bool         simplex;
     };
 
