@@ -109,6 +109,31 @@ namespace StabilizedLagrangian
                 join(cell->parent()->face(f));
       }
 
+      /**
+       * Turn deal.II's quarter ball (the orthant x_i >= 0 of a ball about the
+       * origin) below its centre by a rotation, (x, y) -> (y, -x) and (x, y, z)
+       * -> (y, x, -z), and move the centre to @p center.
+       */
+      template <int dim>
+      void
+      turn_orthant_below(Triangulation<dim> &triangulation, const Point<dim> &center)
+      {
+        GridTools::transform(
+            [&](const Point<dim> &p) {
+              Point<dim> q;
+              q[0] = p[1];
+              if (dim == 2)
+                q[1] = -p[0];
+              else
+                {
+                  q[1]       = p[0];
+                  q[dim - 1] = -p[dim - 1];
+                }
+              return q + center;
+            },
+            triangulation);
+      }
+
       /** The ball parameters shared by `half ball` and `two balls`. */
       void
       declare_ball_parameters(ParameterHandler &prm, const std::string &radius_documentation)
@@ -331,25 +356,10 @@ namespace StabilizedLagrangian
       create_symmetric_mesh(Triangulation<dim> &triangulation) const
       {
         GridGenerator::quarter_hyper_ball(triangulation, Point<dim>(), radius);
-        // a rotation taking the orthant below the centre, (x, y) -> (y, -x)
-        // and (x, y, z) -> (y, x, -z), then the shift putting its lowest
-        // point at the origin
+        // the orthant turned below the centre, its lowest point at the origin
         Point<dim> center;
         center[dim - 1] = radius;
-        GridTools::transform(
-            [&](const Point<dim> &p) {
-              Point<dim> q;
-              q[0] = p[1];
-              if (dim == 2)
-                q[1] = -p[0];
-              else
-                {
-                  q[1]       = p[0];
-                  q[dim - 1] = -p[dim - 1];
-                }
-              return q + center;
-            },
-            triangulation);
+        turn_orthant_below(triangulation, center);
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
         triangulation.refine_global(global_refinements);
         if (simplex)
@@ -438,22 +448,8 @@ namespace StabilizedLagrangian
         Triangulation<dim> lower, upper, both;
         GridGenerator::quarter_hyper_ball(lower, lower_center, radius);
         GridGenerator::quarter_hyper_ball(upper, Point<dim>(), radius);
-        // a rotation taking the upper body's orthant below its centre,
-        // (x, y) -> (y, -x) and (x, y, z) -> (y, x, -z), then the shift
-        GridTools::transform(
-            [&](const Point<dim> &p) {
-              Point<dim> q;
-              q[0] = p[1];
-              if (dim == 2)
-                q[1] = -p[0];
-              else
-                {
-                  q[1]       = p[0];
-                  q[dim - 1] = -p[dim - 1];
-                }
-              return q + upper_center;
-            },
-            upper);
+        // the upper body's orthant turned below its centre
+        turn_orthant_below(upper, upper_center);
         for (const auto &cell : upper.active_cell_iterators())
           {
             cell->set_material_id(1);
