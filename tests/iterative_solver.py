@@ -11,7 +11,12 @@ from the direct solver's and no more; both runs converge to the same Newton
 tolerance, so the forces of every step agree to well below the
 discretisation (bound 1e-6 relative to the normal force, for Newton
 tolerances of 1e-8 to 1e-10 on the residual). No system may be left to the
-direct solver, and the GMRES iterations are reported (run_summary.csv)."""
+direct solver, and the GMRES iterations are reported (run_summary.csv).
+
+`Method = automatic` picks by size: on the Hertz sphere (26,304 displacement
+unknowns and the multipliers) the direct solver below `Automatic threshold` (no
+GMRES iteration, threshold 100000), the iterative one from it (the default
+threshold 20000); in 2D always the direct one."""
 import os
 import sys
 import sltest
@@ -51,4 +56,19 @@ for name, ranks in (("patin_elastic", 1), ("patin_elastic", 2), ("patin_3d", 1),
           f"{label}: {int(summary['krylov_iterations'])} GMRES iterations for "
           f"{int(summary['newton_iterations'])} Newton iterations, "
           f"{int(summary['iterative_fallbacks'])} systems left to the direct solver")
+
+# Method = automatic: by the unknowns of the mesh, in 3D only
+AUTOMATIC = sltest.nested_set("Linear solver/Method", "automatic")
+for name, threshold, expect_iterative in (("hertz_sphere", 100000, False), ("hertz_sphere", 20000, True),
+                                          ("patin_elastic", 1, False)):
+    scene = sltest.read_prm(os.path.join(prm_dir, name + ".prm"))
+    out = os.path.join(workdir, f"{name}-automatic-{threshold}")
+    sltest.run(executable, scene + AUTOMATIC + sltest.nested_set("Linear solver/Automatic threshold", threshold)
+               + sltest.QUIET_OUTPUT, out)
+    summary = sltest.read_csv(os.path.join(out, "output", "run_summary.csv"))[0]
+    unknowns = int(summary["displacement_dofs"] + summary["multiplier_dofs"])
+    check((summary["krylov_iterations"] > 0) == expect_iterative,
+          f"{name}, automatic, threshold {threshold}: {unknowns} unknowns in {int(summary['dimension'])}D, "
+          f"{'iterative' if summary['krylov_iterations'] > 0 else 'direct'} "
+          f"({int(summary['krylov_iterations'])} GMRES iterations)")
 check.finish()

@@ -303,10 +303,13 @@ namespace StabilizedLagrangian
     struct LinearSolver
     {
       /** one factorisation per Newton system, or GMRES with a block preconditioner */
-      bool         iterative = false;
-      std::string  direct_solver;
-      double       maximum_forcing_term = 1e-3; ///< the largest relative GMRES tolerance
-      unsigned int maximum_iterations   = 300;  ///< GMRES iterations per Newton system
+      bool iterative = false;
+      /** `Method = automatic`: iterative in 3D from automatic_threshold unknowns on */
+      bool                    automatic           = false;
+      types::global_dof_index automatic_threshold = 20000;
+      std::string             direct_solver;
+      double                  maximum_forcing_term = 1e-3; ///< the largest relative GMRES tolerance
+      unsigned int            maximum_iterations   = 300;  ///< GMRES iterations per Newton system
       /** GMRES tolerance from Eisenstat–Walker, or from the Newton tolerance (default) */
       bool         eisenstat_walker     = false;
       bool         null_pivot_detection = false; ///< MUMPS: solve singular systems

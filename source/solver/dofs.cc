@@ -521,7 +521,12 @@ namespace StabilizedLagrangian
         std::make_unique<LinearSolvers::DirectSolver>(linear_solver_parameters.direct_solver,
                                                       linear_solver_parameters.null_pivot_detection,
                                                       linear_solver_parameters.workspace_increase);
-    if (linear_solver_parameters.iterative)
+    // Method = automatic: iterative on the 3D meshes from the threshold on
+    const bool iterative = linear_solver_parameters.iterative ||
+                           (linear_solver_parameters.automatic && dim == 3 &&
+                            n_u + n_multipliers >= linear_solver_parameters.automatic_threshold);
+    iterative_solver.reset();
+    if (iterative)
       {
         // the AMG's near-null space: the displacement's translations
         std::vector<std::vector<bool>> constant_modes;

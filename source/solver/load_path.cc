@@ -511,7 +511,10 @@ namespace StabilizedLagrangian
            "estimated_relative_error,peak_memory_MiB,wall_time_s";
     if (inf_sup_checked())
       file << ",inf_sup_beta";
-    if (iterative_solver)
+    // (with `automatic` also on the meshes it left to the direct solver: 0)
+    const bool krylov_columns =
+        linear_solver_parameters.iterative || linear_solver_parameters.automatic;
+    if (krylov_columns)
       file << ",krylov_iterations,iterative_fallbacks";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
@@ -527,7 +530,7 @@ namespace StabilizedLagrangian
          << ',' << wall_time;
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
-    if (iterative_solver)
+    if (krylov_columns)
       file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks;
     for (const auto &entry : slowest)
       file << ',' << entry.second;
