@@ -5,6 +5,8 @@
 
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
+#include <functional>
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -403,22 +405,27 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
+  ContactProblem<dim>::any_law(
+      const std::function<bool(const FrictionLaws::Interface &)> &property) const
+  {
+    return property(*friction_law) ||
+           std::any_of(contact_zones.begin(), contact_zones.end(), [&](const auto &zone) {
+             return property(*zone.friction_law);
+           });
+  }
+
+  template <int dim>
+  bool
   ContactProblem<dim>::any_friction() const
   {
-    return friction_law->has_friction() ||
-           std::any_of(contact_zones.begin(), contact_zones.end(), [](const auto &zone) {
-             return zone.friction_law->has_friction();
-           });
+    return any_law([](const auto &law) { return law.has_friction(); });
   }
 
   template <int dim>
   bool
   ContactProblem<dim>::any_pressure_dependent_threshold() const
   {
-    return friction_law->threshold_depends_on_pressure() ||
-           std::any_of(contact_zones.begin(), contact_zones.end(), [](const auto &zone) {
-             return zone.friction_law->threshold_depends_on_pressure();
-           });
+    return any_law([](const auto &law) { return law.threshold_depends_on_pressure(); });
   }
 
   template class ContactProblem<2>;

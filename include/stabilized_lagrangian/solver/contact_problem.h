@@ -1559,6 +1559,9 @@ namespace StabilizedLagrangian
     {
       return state.zone == 0 ? *friction_law : *contact_zones[state.zone - 1].friction_law;
     }
+    /** Whether the default law or some zone's has @p property. */
+    bool
+    any_law(const std::function<bool(const FrictionLaws::Interface &)> &property) const;
     /** Whether some zone has friction (then Λ exists on the whole of Γc). */
     bool
     any_friction() const;
