@@ -52,6 +52,12 @@ FIELDS = {"contact_pressure": ("contact pressure", "MPa", "scalar", "no contact"
           "gap": ("gap", "mm", "scalar", None),
           "slip_increment": ("slip increment (magnitude)", "mm", "magnitude", "no slip"),
           "contact_status": ("contact status", None, "status", None)}
+
+
+def array_name(field):
+    """The VTU array of a field: its name with its unit (contact_pressure_MPa)."""
+    unit = "mm" if field == "displacement" else FIELDS[field][1]
+    return field + ("_" + unit if unit else "")
 WIDTH, HEIGHT = 1600, 900
 BODY_GREY = [0.82, 0.82, 0.82]
 OBSTACLE_GREY = [0.55, 0.55, 0.6]
@@ -122,8 +128,9 @@ def merged_grid(grid):
     Position alone would also merge the coincident nodes of two bodies in contact, whose
     displacement or contact fields differ."""
     point_data = grid.GetPointData()
-    continuous = [n for n in ("displacement", "contact_pressure", "tangential_traction", "gap",
-                              "slip_increment", "contact_status") if point_data.GetArray(n) is not None]
+    continuous = [array_name(n) for n in ("displacement", "contact_pressure", "tangential_traction", "gap",
+                                          "slip_increment", "contact_status")]
+    continuous = [n for n in continuous if point_data.GetArray(n) is not None]
     key = [vtk_to_numpy(grid.GetPoints().GetData()).astype(float)]
     key += [vtk_to_numpy(point_data.GetArray(n)).astype(float).reshape(grid.GetNumberOfPoints(), -1)
             for n in continuous]
@@ -188,7 +195,7 @@ def point_array(data, name):
 
 
 def field_values(data, name):
-    values = point_array(data, name)
+    values = point_array(data, array_name(name))
     return np.sqrt((values ** 2).sum(1)) if FIELDS[name][2] == "magnitude" else values
 
 
@@ -417,7 +424,7 @@ def show_polydata(view, data, colour=None, opacity=1.0, line_width=None, edges=F
 
 def render(step, time, data, marked, values, colour_range, scale, png):
     points = vtk_to_numpy(data.GetPoints().GetData()).astype(float)
-    displacement = point_array(data, "displacement")
+    displacement = point_array(data, array_name("displacement"))
     deformed = points + scale * displacement
     cells = cells_of(data)
     producers = []
@@ -477,7 +484,7 @@ def render(step, time, data, marked, values, colour_range, scale, png):
 
 
     # the camera: the contact zone's centre and extent (deformed), the pressed part of it first
-    pressure = point_array(data, "contact_pressure")
+    pressure = point_array(data, array_name("contact_pressure"))
     on_surface = marked if marked is not None and marked.any() else np.ones(len(points), dtype=bool)
     pressed = on_surface & (pressure > 0)
     zone = pressed if pressed.any() else on_surface
@@ -626,7 +633,7 @@ colour_range = field_range([v[m] if m is not None and m.any() else v for _, m, v
 
 for step in steps:
     data, marked, values, size = loaded[step]
-    displacement = point_array(data, "displacement")
+    displacement = point_array(data, array_name("displacement"))
     max_u = float(np.sqrt((displacement ** 2).sum(1)).max())
     scale = scale_factor if args.scale != "auto" else (0.1 * size / max_u if max_u > 0 else 1.0)
     png = os.path.abspath(args.output) if single_file else os.path.join(folder, f"{args.field}-{step:05d}.png")

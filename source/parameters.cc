@@ -1035,7 +1035,10 @@ namespace StabilizedLagrangian
     void
     declare_all(ParameterHandler &prm)
     {
-      prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
+      prm.declare_entry("Dimension",
+                        "2",
+                        Patterns::Integer(2, 3),
+                        "2 (plane strain, or axisymmetric: Geometry/Axisymmetric) or 3.");
       Geometry::declare_parameters<dim>(prm);
       Obstacles::declare_parameters<dim>(prm);
       prm.enter_subsection("Obstacle");
@@ -1246,7 +1249,10 @@ namespace StabilizedLagrangian
     read_dimension(const std::string &text, const bool is_file)
     {
       ParameterHandler prm;
-      prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "2 (plane strain) or 3.");
+      prm.declare_entry("Dimension",
+                        "2",
+                        Patterns::Integer(2, 3),
+                        "2 (plane strain, or axisymmetric: Geometry/Axisymmetric) or 3.");
       const ExpandedFile content = is_file ? read_file(text) : ExpandedFile{text, {}};
       try
         {

@@ -7,7 +7,8 @@ Usage: pvpython tests/check_pvd_fields.py OUTPUT_DIR DIM
 Checks: every file referenced by solution.pvd (and by its .pvtu records) exists;
 more than one time step; at the last step the expected point arrays with their
 number of components and the array `subdomain`; no NaN in any array at any step;
-contact_status in {0, 1, 2}; max contact_pressure > 0. Exit 0 on success, 1 on failure.
+contact_status in {-1, 0, 1, 2} (-1 off the contact surface, and present); max
+contact_pressure > 0. Exit 0 on success, 1 on failure.
 """
 import os
 import sys
@@ -74,8 +75,9 @@ def fetch(time):
 
 # deal.II's VTU writer pads vectors to 3 and tensors to 3x3 components, with zeros
 vector, tensor = (dim, 3), (dim * dim, 9)
-expected = {"displacement": vector, "stress": tensor, "von_mises_stress": (1,), "contact_pressure": (1,),
-            "tangential_traction": vector, "gap": (1,), "slip_increment": vector, "contact_status": (1,)}
+expected = {"displacement_mm": vector, "stress_MPa": tensor, "von_mises_stress_MPa": (1,),
+            "contact_pressure_MPa": (1,), "tangential_traction_MPa": vector, "gap_mm": (1,),
+            "slip_increment_mm": vector, "contact_status": (1,)}
 last = fetch(times[-1])
 if last.GetNumberOfPoints() == 0:
     fail(f"the last step (t = {times[-1]:g}) has no points")
@@ -111,11 +113,15 @@ for time in times:
                 fail(f"{kind} array '{name}' contains NaN at t = {time:g}")
     if "contact_status" in data.PointData.keys():
         status = np.unique(np.asarray(data.PointData["contact_status"]))
-        if not np.isin(status, (0, 1, 2)).all():
-            fail(f"contact_status takes values {status} at t = {time:g}, expected only 0, 1, 2")
-print(f"ok   no NaN in any array and contact_status in {{0, 1, 2}} at all {len(times)} steps")
+        if not np.isin(status, (-1, 0, 1, 2)).all():
+            fail(f"contact_status takes values {status} at t = {time:g}, expected only -1 (not a contact "
+                 "node), 0 (open), 1 (stick), 2 (slip)")
+        if -1 not in status:
+            fail(f"contact_status is never -1 at t = {time:g}: the nodes off the contact surface "
+                 "are not told from open ones")
+print(f"ok   no NaN in any array and contact_status in {{-1, 0, 1, 2}} at all {len(times)} steps")
 
-p_max = np.max(last.PointData["contact_pressure"])
+p_max = np.max(last.PointData["contact_pressure_MPa"])
 if not p_max > 0:
     fail(f"max contact_pressure = {p_max:g} at the last step, expected > 0")
 print(f"ok   max contact_pressure = {p_max:g} > 0 at the last step")

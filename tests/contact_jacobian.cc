@@ -8,9 +8,11 @@
 // (linear elastic) and F-bar (neo-Hookean), whose tangent also runs through the
 // gradient at each cell's centre, and the condensed three-field formulation
 // (Q1/P0, Q2/P1disc), whose tangent runs through every quadrature point's.
-// Last `Complementarity = weighted`, frozen and folded: the nodal conditions
+// Then `Complementarity = weighted`, frozen and folded: the nodal conditions
 // on the weighted gap and slip, whose Λ rows are nonlinear in the slip of the
 // node's whole support; also with the dual multiplier basis (Q1/P1 dual).
+// Last the axisymmetric model: the hoop strain u_r/r and the weight 2πr in
+// the volume and contact terms, small strain and finite strain.
 
 #include <deal.II/base/mpi.h>
 
@@ -157,6 +159,31 @@ end
   end
 end
 )";
+  }
+
+  /**
+   * The block as the section of a thick tube about the y axis (r from 0.5 to
+   * 2.5), with the linear elastic model or the neo-Hookean one (C10 = 0.2).
+   */
+  std::string
+  axisymmetric(const bool finite_strain)
+  {
+    return std::string(R"(
+subsection Geometry
+  set Axisymmetric = true
+  subsection block
+    set Left side = 0.5
+  end
+end
+)") + (finite_strain ? R"(
+subsection Material
+  set Model = neo-Hookean
+  subsection neo-Hookean
+    set C10 = 0.2
+  end
+end
+)"
+                     : "");
   }
 
   template <int dim>
@@ -360,6 +387,20 @@ main(int argc, char *argv[])
         test<2>(state, "Gauss", 0.3, true, two_bodies<2>() + conditions, 1e-3, label, false);
         test<3>(state, "Gauss", 0.3, true, two_bodies<3>() + conditions, 1e-3, label, false);
       }
+  // the axisymmetric model (2D): the hoop rows and columns of the tangent,
+  // with displacements of 2.5 % of the cell size so that the finite-strain
+  // terms count
+  for (const bool finite_strain : {false, true})
+    for (const State state : {State::open, State::stick, State::slip})
+      for (const bool generalized : {false, true})
+        if (!generalized || state != State::open)
+          test<2>(state,
+                  "Gauss-Lobatto",
+                  0.3,
+                  generalized,
+                  axisymmetric(finite_strain),
+                  2.5e-2,
+                  finite_strain ? "axisymmetric neo-Hookean " : "axisymmetric linear elastic ");
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -43,6 +43,26 @@ def nested_set(path, value):
 GENERALIZED_NEWTON = "".join(nested_set(f"Nonlinear solver/{loop}/Method", "newton")
                              for loop in ("Geometry loop", "Friction loop", "Status loop"))
 
+# the half ball's symmetry planes (Geometry/half ball/Symmetry planes = true) held in their
+# normal direction, by dimension
+SYMMETRY_PLANES = {2: """subsection Boundary conditions
+  subsection Dirichlet symmetry x
+    set Boundary id = 4
+    set Components  = x
+  end
+end
+""", 3: """subsection Boundary conditions
+  subsection Dirichlet symmetry x
+    set Boundary id = 4
+    set Components  = x
+  end
+  subsection Dirichlet symmetry y
+    set Boundary id = 5
+    set Components  = y
+  end
+end
+"""}
+
 QUIET_OUTPUT = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
 
 

@@ -23,28 +23,11 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 
-SYMMETRY = {2: """subsection Boundary conditions
-  subsection Dirichlet symmetry x
-    set Boundary id = 4
-    set Components  = x
-  end
-end
-""", 3: """subsection Boundary conditions
-  subsection Dirichlet symmetry x
-    set Boundary id = 4
-    set Components  = x
-  end
-  subsection Dirichlet symmetry y
-    set Boundary id = 5
-    set Components  = y
-  end
-end
-"""}
 for dim, scene, parts, bound in ((2, "hertz_cylinder.prm", 2, 0.02), (3, "hertz_sphere.prm", 4, 0.03)):
     text = sltest.read_prm(os.path.join(root, "prm", scene))
     results = {}
     for model, extra in (("whole", ""), ("symmetric", sltest.nested_set("Geometry/half ball/Symmetry planes", "true")
-                                          + SYMMETRY[dim])):
+                                          + sltest.SYMMETRY_PLANES[dim])):
         out = os.path.join(workdir, f"{dim}d-{model}")
         sltest.run(executable, text + extra + sltest.QUIET_OUTPUT, out)
         force = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))[-1]["normal_force_N"]

@@ -129,7 +129,7 @@ def check_case(name, text, out, ranks, nodes, dim, measure):
     for path in files:
         arrays = vtu_point_arrays(path)
         points += arrays["points"][1]
-        stress += arrays["stress"][1]
+        stress += arrays["stress_MPa"][1]
     normal = points[dim - 1::3]
     check(normal and min(normal) < 0 < max(normal),
           f"{name}: the .vtu output ({len(files)} file(s)) covers both blocks")

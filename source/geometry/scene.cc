@@ -158,8 +158,9 @@ namespace StabilizedLagrangian
     } // namespace
 
     /**
-     * @brief Rectangular block (the patin of seed Fig. 2): x in [−L/2, L/2],
-     * height H above the plane y = 0 (2D) or z = 0 (3D), width W in y (3D).
+     * @brief Rectangular block (the patin of seed Fig. 2): x in [−L/2, L/2]
+     * (or from `Left side`), height H above the plane y = 0 (2D) or z = 0
+     * (3D), width W in y (3D).
      */
     template <int dim> class Block : public Interface<dim>
     {
@@ -171,6 +172,12 @@ namespace StabilizedLagrangian
         prm.declare_entry(
             "Height", "50", Patterns::Double(), "Extent in the vertical direction (mm), > 0.");
         prm.declare_entry("Width", "50", Patterns::Double(), "Extent in y, 3D only (mm), > 0.");
+        prm.declare_entry("Left side",
+                          "centred",
+                          Patterns::Anything(),
+                          "x of the face at x min (mm), or centred: -Length/2. 0 with "
+                          "Geometry/Axisymmetric = true makes the block a solid cylinder of "
+                          "radius Length about the y axis.");
         prm.declare_entry("Subdivisions",
                           dim == 2 ? "2, 1" : "2, 1, 1",
                           Patterns::List(Patterns::Integer(1), dim, dim),
@@ -210,6 +217,16 @@ namespace StabilizedLagrangian
           subdivisions.push_back(Utilities::string_to_int(s));
         if (!(length > 0. && height > 0. && width > 0.))
           throw InputError("Geometry/block: Length, Height and Width must be > 0.");
+        const std::string left = prm.get("Left side");
+        try
+          {
+            left_side = left == "centred" ? -length / 2. : Utilities::string_to_double(left);
+          }
+        catch (...)
+          {
+            throw InputError("Geometry/block/Left side = '" + left +
+                             "': give a number (mm) or centred.");
+          }
       }
 
       bool
@@ -222,8 +239,8 @@ namespace StabilizedLagrangian
       create_mesh(Triangulation<dim> &triangulation) const override
       {
         Point<dim> lower, upper;
-        lower[0]       = -length / 2.;
-        upper[0]       = length / 2.;
+        lower[0]       = left_side;
+        upper[0]       = left_side + length;
         upper[dim - 1] = height;
         if (dim == 3)
           {
@@ -253,6 +270,7 @@ namespace StabilizedLagrangian
       const unsigned int        refinements, local_refinements;
       const double              refinement_radius;
       const bool                simplex;
+      double                    left_side;
       Point<dim>                refinement_center;
       std::vector<unsigned int> subdivisions;
     };

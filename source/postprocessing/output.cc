@@ -10,6 +10,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_out_faces.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
@@ -40,8 +41,10 @@ namespace StabilizedLagrangian
     template <int dim> class CellStressPostprocessor : public DataPostprocessor<dim>
     {
     public:
-      explicit CellStressPostprocessor(const std::vector<Tensor<2, 3>> &cell_stress)
+      /** @p hoop: an axisymmetric model, whose σ_θθ is a field of its own */
+      CellStressPostprocessor(const std::vector<Tensor<2, 3>> &cell_stress, const bool hoop)
           : cell_stress(cell_stress)
+          , hoop(hoop)
       {
       }
 
@@ -59,14 +62,18 @@ namespace StabilizedLagrangian
               for (unsigned int j = 0; j < dim; ++j)
                 values(i * dim + j) = sigma[i][j];
             values(dim * dim) = von_mises;
+            if (hoop)
+              values(dim * dim + 1) = sigma[2][2];
           }
       }
 
       std::vector<std::string>
       get_names() const override
       {
-        std::vector<std::string> names(dim * dim, "stress");
-        names.push_back("von_mises_stress");
+        std::vector<std::string> names(dim * dim, "stress_MPa");
+        names.push_back("von_mises_stress_MPa");
+        if (hoop)
+          names.push_back("hoop_stress_MPa");
         return names;
       }
 
@@ -76,6 +83,8 @@ namespace StabilizedLagrangian
         std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
             dim * dim, DataComponentInterpretation::component_is_part_of_tensor);
         kinds.push_back(DataComponentInterpretation::component_is_scalar);
+        if (hoop)
+          kinds.push_back(DataComponentInterpretation::component_is_scalar);
         return kinds;
       }
 
@@ -87,7 +96,65 @@ namespace StabilizedLagrangian
 
     private:
       const std::vector<Tensor<2, 3>> &cell_stress;
+      const bool                       hoop;
     };
+
+    /** The faces of some boundaries (the contact surfaces) of the locally owned cells. */
+    template <int dim> class BoundaryFacesOut : public DataOutFaces<dim>
+    {
+    public:
+      using FaceDescriptor = typename DataOutFaces<dim>::FaceDescriptor;
+
+      explicit BoundaryFacesOut(const std::set<types::boundary_id> &ids)
+          : DataOutFaces<dim>(true)
+          , ids(ids)
+      {
+      }
+
+      FaceDescriptor
+      first_face() override
+      {
+        return first_kept(DataOutFaces<dim>::first_face());
+      }
+
+      FaceDescriptor
+      next_face(const FaceDescriptor &face) override
+      {
+        return first_kept(DataOutFaces<dim>::next_face(face));
+      }
+
+    private:
+      /** @p face or the first face after it on one of the boundaries */
+      FaceDescriptor
+      first_kept(FaceDescriptor face)
+      {
+        while (face.first.state() == IteratorState::valid &&
+               ids.count(face.first->face(face.second)->boundary_id()) == 0)
+          face = DataOutFaces<dim>::next_face(face);
+        return face;
+      }
+
+      const std::set<types::boundary_id> ids;
+    };
+
+    /**
+     * The records of @p records (solution_<step>.pvtu) renamed to the file
+     * @p stem_<step>@p extension of the same step.
+     */
+    std::vector<std::pair<double, std::string>>
+    records_of(const std::vector<std::pair<double, std::string>> &records,
+               const std::string                                 &stem,
+               const std::string                                 &extension)
+    {
+      std::vector<std::pair<double, std::string>> renamed;
+      for (const auto &[time, record] : records)
+        {
+          const auto digits = record.find_last_of('_');
+          renamed.emplace_back(
+              time, stem + record.substr(digits, record.rfind('.') - digits) + extension);
+        }
+      return renamed;
+    }
   } // namespace
 
   template <int dim>
@@ -113,27 +180,32 @@ namespace StabilizedLagrangian
     cell_stress.assign(n_cells, Tensor<2, 3>());
     const std::vector<std::string> names = history_field_names();
     cell_history_fields.assign(names.size(), Vector<float>(n_cells));
-    FEValues<dim>                    fe_values(*fe_u, cell_quadrature, update_gradients);
+    FEValues<dim> fe_values(
+        *fe_u, cell_quadrature, update_gradients | update_values | update_quadrature_points);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
+    std::vector<Tensor<1, dim>>      values(cell_quadrature.size()); // axisymmetric: u_r/r
     const double                     weight = 1. / cell_quadrature.size();
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(u, gradients);
+          fe_values[displacement].get_function_values(u, values);
           const unsigned int               index       = cell->active_cell_index();
           const Materials::Interface<dim> &material    = material_of(cell);
           const std::vector<std::string>   field_names = material.history_field_names();
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
-              const auto history = material_history.committed(index, q);
-              const auto response =
-                  committed_response(cell, q, cell_quadrature.point(q), gradients[q]);
+              const auto   history = material_history.committed(index, q);
+              const double hoop =
+                  hoop_strain(fe_values.quadrature_point(q), values[q], gradients[q]);
+              const auto response = committed_response(
+                  cell, q, cell_quadrature.point(q), gradients[q], nullptr, hoop);
               cell_stress[index] +=
-                  weight *
-                  Materials::cauchy_stress(gradients[q], response, material.is_finite_strain());
+                  weight * Materials::cauchy_stress(
+                               gradients[q], response, material.is_finite_strain(), hoop);
               const std::vector<double> fields = material.history_fields(history);
               for (unsigned int f = 0; f < fields.size(); ++f)
                 cell_history_fields[std::find(names.begin(), names.end(), field_names[f]) -
@@ -277,9 +349,16 @@ namespace StabilizedLagrangian
       }
     sums.compress(VectorOperation::add);
     counts.compress(VectorOperation::add);
+    // off Γc every field is 0, the status −1 (0 is "open")
+    ComponentMask status_mask(n_components, false);
+    if (fields.back().name == "contact_status")
+      status_mask.set(n_components - 1, true);
+    const IndexSet status_dofs = DoFTools::extract_dofs(field_dofs, status_mask);
     vertex_values.reinit(field_dofs.locally_owned_dofs(), mpi_communicator);
     for (const auto index : field_dofs.locally_owned_dofs())
-      vertex_values(index) = counts(index) > 0. ? sums(index) / counts(index) : 0.;
+      vertex_values(index) = counts(index) > 0.              ? sums(index) / counts(index)
+                             : status_dofs.is_element(index) ? -1.
+                                                             : 0.;
     vertex_values.compress(VectorOperation::insert);
   }
 
@@ -315,11 +394,14 @@ namespace StabilizedLagrangian
      * @p directory (on rank 0) and say why it failed.
      */
     std::runtime_error
-    solution_write_error(const std::string &directory, const unsigned int step, const bool root)
+    solution_write_error(const std::string &directory,
+                         const unsigned int step,
+                         const bool         root,
+                         const std::string &name = "solution")
     {
       const int error = errno;
       // no half-written piece of this step is left behind
-      const std::string stem = "solution_" + Utilities::int_to_string(step, 5);
+      const std::string stem = name + "_" + Utilities::int_to_string(step, 5);
       if (root)
         for (const auto &entry : std::filesystem::directory_iterator(directory))
           if (entry.path().filename().string().rfind(stem, 0) == 0)
@@ -352,22 +434,23 @@ namespace StabilizedLagrangian
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_kind(
         dim, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(
-        dof_handler_u, u, std::vector<std::string>(dim, "displacement"), vector_kind);
+        dof_handler_u, u, std::vector<std::string>(dim, "displacement_mm"), vector_kind);
     std::vector<Tensor<2, 3>>  cell_stress;
     std::vector<Vector<float>> cell_history_fields;
     compute_cell_averages(u, cell_stress, cell_history_fields);
-    const CellStressPostprocessor<dim> stress(cell_stress);
+    const CellStressPostprocessor<dim> stress(cell_stress, axisymmetric);
     data_out.add_data_vector(dof_handler_u, u, stress);
     const std::vector<std::string> history_names = history_field_names();
     for (unsigned int f = 0; f < history_names.size(); ++f)
       data_out.add_data_vector(cell_history_fields[f], history_names[f]);
 
+    // the contact fields, named with their units
     std::vector<std::string>                                              names;
     std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds;
     for (const auto &field : fields)
       for (unsigned int c = 0; c < field.components; ++c)
         {
-          names.push_back(field.name);
+          names.push_back(field.name + (field.unit.empty() ? "" : "_" + field.unit));
           kinds.push_back(field.components == 1
                               ? DataComponentInterpretation::component_is_scalar
                               : DataComponentInterpretation::component_is_part_of_vector);
@@ -394,6 +477,42 @@ namespace StabilizedLagrangian
         throw solution_write_error(
             directory, step, Utilities::MPI::this_mpi_process(mpi_communicator) == 0);
       }
+    // the contact surface itself: the fields at its nodes, not smeared into cells
+    BoundaryFacesOut<dim> surface_out(contact_parameters.boundary_ids);
+    surface_out.add_data_vector(
+        dof_handler_u, u, std::vector<std::string>(dim, "displacement_mm"), vector_kind);
+    surface_out.add_data_vector(field_dofs, vertex_ghosted, names, kinds);
+    surface_out.build_patches(fe_pair->displacement_degree());
+    // a piece per rank that holds contact faces (an empty piece has no Points
+    // element, which VTK's readers report as an error), listed by rank 0
+    unsigned int local_faces = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          local_faces +=
+              face->at_boundary() && contact_parameters.boundary_ids.count(face->boundary_id()) > 0;
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const std::string  stem    = "contact_surface_" + Utilities::int_to_string(step, 5);
+    const auto         faces   = Utilities::MPI::all_gather(mpi_communicator, local_faces);
+    bool               written = true;
+    if (local_faces > 0)
+      {
+        std::ofstream piece(directory + "/" + stem + "." + std::to_string(rank) + ".vtu");
+        surface_out.write_vtu(piece);
+        written = static_cast<bool>(piece);
+      }
+    if (rank == 0 && written)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < faces.size(); ++r)
+          if (faces[r] > 0)
+            pieces.push_back(stem + "." + std::to_string(r) + ".vtu");
+        std::ofstream record_file(directory + "/" + stem + ".pvtu");
+        surface_out.write_pvtu_record(record_file, pieces);
+        written = static_cast<bool>(record_file);
+      }
+    if (Utilities::MPI::logical_or(!written, mpi_communicator))
+      throw solution_write_error(directory, step, rank == 0, "contact_surface");
     // the .pvd lists a step only once every rank's piece is complete
     MPI_Barrier(mpi_communicator);
     pvd_records.emplace_back(t, record);
@@ -444,15 +563,8 @@ namespace StabilizedLagrangian
     const std::string name = "obstacle_" + Utilities::int_to_string(step, 5) + ".vtu";
     SafeFiles::write_atomically(output_parameters.directory + "/" + name, vtu.str());
     // the same steps as solution.pvd
-    std::vector<std::pair<double, std::string>> records;
-    for (const auto &[time, record] : pvd_records)
-      {
-        const auto digits = record.find_last_of('_');
-        records.emplace_back(
-            time, "obstacle" + record.substr(digits, record.rfind('.') - digits) + ".vtu");
-      }
     std::ostringstream pvd;
-    DataOutBase::write_pvd_record(pvd, records);
+    DataOutBase::write_pvd_record(pvd, records_of(pvd_records, "obstacle", ".vtu"));
     SafeFiles::write_atomically(output_parameters.directory + "/obstacle.pvd", pvd.str());
   }
 
@@ -517,6 +629,7 @@ namespace StabilizedLagrangian
       };
       return (starts("solution") && (ends(".vtu") || ends(".pvtu") || ends(".pvd"))) ||
              (starts("obstacle") && (ends(".vtu") || ends(".pvd"))) ||
+             (starts("contact_surface") && (ends(".vtu") || ends(".pvtu") || ends(".pvd"))) ||
              (starts("profile-") && ends(".csv")) || starts("cycle-") || starts("checkpoint") ||
              name == "statistics.csv" || name == "iterations.csv" || name == "run_summary.csv" ||
              name == "refinement_cycles.csv" || name == "parameters.prm" || ends(".tmp");
@@ -571,6 +684,10 @@ namespace StabilizedLagrangian
     std::ostringstream pvd;
     DataOutBase::write_pvd_record(pvd, pvd_records);
     SafeFiles::write_atomically(output_parameters.directory + "/solution.pvd", pvd.str());
+    std::ostringstream surface;
+    DataOutBase::write_pvd_record(surface, records_of(pvd_records, "contact_surface", ".pvtu"));
+    SafeFiles::write_atomically(output_parameters.directory + "/contact_surface.pvd",
+                                surface.str());
   }
 
   // the class itself is instantiated once, in contact_problem.cc

@@ -86,7 +86,12 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::assemble_volume(const bool assemble_matrix)
   {
     const FiniteElement<dim> &fe = *fe_u;
-    FEValues<dim>             fe_values(fe, cell_quadrature, update_gradients | update_JxW_values);
+    // axisymmetric: the values and points give the hoop strain u_r/r and the weight 2πr
+    FEValues<dim> fe_values(
+        fe,
+        cell_quadrature,
+        update_gradients | update_JxW_values |
+            (axisymmetric ? update_values | update_quadrature_points : update_default));
     // F-bar: the gradient at the cell's centre (the one-point Gauss rule)
     FEValues<dim>      centre_values(fe, cell_gauss(1), update_gradients | update_JxW_values);
     FEFaceValues<dim>  neumann_values(fe,
@@ -102,7 +107,8 @@ namespace StabilizedLagrangian
     for (unsigned int i = 0; i < n_dofs; ++i)
       component[i] = fe.system_to_component_index(i).first;
     std::vector<Tensor<2, dim>> tangent_times_grad(n_dofs);
-    std::vector<Tensor<2, dim>> sample_gradients; // F-bar and mixed
+    std::vector<double>         hoop_of_shape(n_dofs), hoop_times_grad(n_dofs); // axisymmetric
+    std::vector<Tensor<2, dim>> sample_gradients;                               // F-bar and mixed
 
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -141,6 +147,18 @@ namespace StabilizedLagrangian
               Tensor<2, dim> grad_u;
               for (unsigned int i = 0; i < n_dofs; ++i)
                 grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
+              // axisymmetric: φ_i,r / r, the hoop strain of a radial shape function
+              double radius = 0., hoop = 0.;
+              if (axisymmetric)
+                {
+                  radius = fe_values.quadrature_point(q)[0];
+                  for (unsigned int i = 0; i < n_dofs; ++i)
+                    {
+                      hoop_of_shape[i] =
+                          component[i] == 0 ? fe_values.shape_value(i, q) / radius : 0.;
+                      hoop += coefficients[i] * hoop_of_shape[i];
+                    }
+                }
               const Point<dim>        &unit = cell_quadrature.point(q);
               Materials::Response<dim> response;
               Tensor<2, dim>           d_kept; // ∂P̃/∂v̄
@@ -152,7 +170,8 @@ namespace StabilizedLagrangian
                                         projection ? projection->value(unit) : 0.,
                                         material_history.committed(cell->active_cell_index(), q),
                                         material_history.trial(cell->active_cell_index(), q),
-                                        &d_kept);
+                                        &d_kept,
+                                        hoop);
                 }
               catch (const Materials::InadmissibleState &error)
                 {
@@ -161,9 +180,12 @@ namespace StabilizedLagrangian
                   inadmissible_state = where.str();
                   return;
                 }
-              const double JxW = fe_values.JxW(q);
+              const double JxW = fe_values.JxW(q) * (axisymmetric ? 2. * numbers::PI * radius : 1.);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
+              if (axisymmetric)
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  cell_rhs(i) += response.hoop_stress * hoop_of_shape[i] * JxW;
               if (!assemble_matrix)
                 continue;
               // A : ∇φ_j, where ∇φ_j has only the row component[j] (with F-bar
@@ -183,12 +205,22 @@ namespace StabilizedLagrangian
                                             samples->shape_grad(j, k));
                       tangent_times_grad[j] += kept_derivative * d_kept;
                     }
+                  // axisymmetric: ∂P/∂F₃₃ φ_j,r/r, and the hoop row ∂P₃₃/∂F : ∇̃φ_j
+                  if (axisymmetric)
+                    {
+                      tangent_times_grad[j] += hoop_of_shape[j] * response.hoop_column;
+                      hoop_times_grad[j] = response.hoop_row[component[j]] * g +
+                                           response.hoop_hoop * hoop_of_shape[j];
+                    }
                 }
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
                   const Tensor<1, dim> gi = fe_values.shape_grad(i, q) * JxW;
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     cell_matrix(i, j) += tangent_times_grad[j][component[i]] * gi;
+                  if (axisymmetric && hoop_of_shape[i] != 0.)
+                    for (unsigned int j = 0; j < n_dofs; ++j)
+                      cell_matrix(i, j) += hoop_of_shape[i] * hoop_times_grad[j] * JxW;
                 }
             }
 
@@ -314,7 +346,8 @@ namespace StabilizedLagrangian
         for (unsigned int j = 0; j < n_dofs; ++j)
           u[fe_u->system_to_component_index(j).first] +=
               coefficients[j] * fe_face_values.shape_value(j, q);
-        const double JxW = fe_face_values.JxW(q);
+        const double JxW =
+            fe_face_values.JxW(q) * radial_weight(fe_face_values.quadrature_point(q));
         for (unsigned int i = 0; i < n_dofs; ++i)
           {
             const unsigned int c = fe_u->system_to_component_index(i).first;
@@ -387,10 +420,12 @@ namespace StabilizedLagrangian
     Vector<double> t(dim);
     for (unsigned int q = 0; q < fe_face_values.n_quadrature_points; ++q)
       {
-        traction.vector_value(fe_face_values.quadrature_point(q), t);
+        const Point<dim> &x = fe_face_values.quadrature_point(q);
+        traction.vector_value(x, t);
         for (unsigned int i = 0; i < fe_u->n_dofs_per_cell(); ++i)
           cell_rhs(i) -= t(fe_u->system_to_component_index(i).first) *
-                         fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+                         fe_face_values.shape_value(i, q) * fe_face_values.JxW(q) *
+                         radial_weight(x);
       }
   }
 

@@ -69,6 +69,8 @@ namespace StabilizedLagrangian
     // node is that integral where the Jacobian is constant (a straight edge, a
     // parallelogram face), not elsewhere (a distorted hexahedron's face).
     // (linear triangles have a constant Jacobian: their vertex weights are consistent)
+    // Axisymmetric: w_a = ∫_F ℓ_a 2πr dΓ, positive also at a node on the axis,
+    // where the Gauss–Lobatto weight 2πr·J vanishes.
     if (contact_parameters.quadrature != Parameters::ContactQuadrature::gauss_lobatto ||
         (dim == 3 && simplex_mesh()))
       return;
@@ -88,8 +90,9 @@ namespace StabilizedLagrangian
               if (std::abs(nodes_1d.point(i)[0] - contact_quadrature.point(q)[d]) < 1e-12)
                 shape(q, g) *= lagrange[i].value(gauss.point(g)[d]);
         }
-    FEFaceValues<dim> gauss_values(*fe_u, gauss, update_JxW_values);
-    FEFaceValues<dim> nodal_values(*fe_u, contact_quadrature, update_JxW_values);
+    FEFaceValues<dim> gauss_values(*fe_u, gauss, update_JxW_values | update_quadrature_points);
+    FEFaceValues<dim> nodal_values(
+        *fe_u, contact_quadrature, update_JxW_values | update_quadrature_points);
     for (auto &face : contact_faces)
       {
         gauss_values.reinit(face.cell, face.face_no);
@@ -99,12 +102,18 @@ namespace StabilizedLagrangian
         for (unsigned int q = 0; q < weights.size(); ++q)
           {
             for (unsigned int g = 0; g < gauss.size(); ++g)
-              weights[q] += shape(q, g) * gauss_values.JxW(g);
-            difference = std::max(difference, std::abs(weights[q] - nodal_values.JxW(q)));
-            smallest   = std::min(smallest, weights[q]);
+              weights[q] += shape(q, g) * gauss_values.JxW(g) *
+                            radial_weight(gauss_values.quadrature_point(g));
+            difference = std::max(
+                difference,
+                std::abs(weights[q] -
+                         nodal_values.JxW(q) * radial_weight(nodal_values.quadrature_point(q))));
+            smallest = std::min(smallest, weights[q]);
           }
         // (a face so distorted that a weight is not positive keeps the lumped ones)
-        if (difference > 1e-12 * face.cell->face(face.face_no)->measure() && smallest > 0.)
+        if (difference > 1e-12 * face.cell->face(face.face_no)->measure() *
+                             radial_weight(face.cell->face(face.face_no)->center()) &&
+            smallest > 0.)
           face.nodal_weights = std::make_shared<const std::vector<double>>(weights);
       }
   }
@@ -226,7 +235,8 @@ namespace StabilizedLagrangian
     k.displacement   = u_now[q];
     k.step_increment = u_now[q] - u_start[q];
     k.position       = u_values->quadrature_point(q) + u_now[q];
-    k.JxW            = weights ? (*weights)[q] : u_values->JxW(q);
+    k.JxW            = weights ? (*weights)[q]
+                               : u_values->JxW(q) * problem.radial_weight(u_values->quadrature_point(q));
     for (unsigned int a = 0; a < m_local.size(); ++a)
       {
         const unsigned int c = problem.fe_m->system_to_component_index(m_local[a]).first;

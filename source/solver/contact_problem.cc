@@ -26,6 +26,12 @@ namespace StabilizedLagrangian
       , verbose(verbose)
   {
     Utilities::System::get_memory_stats(memory_at_start);
+    prm.enter_subsection("Geometry");
+    axisymmetric = prm.get_bool("Axisymmetric");
+    prm.leave_subsection();
+    if (axisymmetric && dim != 2)
+      throw InputError("Geometry/Axisymmetric = true needs Dimension = 2 (the meridian "
+                       "section of the solid of revolution).");
     contact_parameters.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
@@ -233,6 +239,19 @@ namespace StabilizedLagrangian
                        "is biorthogonal under exact integration, while the nodal quadrature "
                        "lumps the multiplier mass (the standard basis is then its own dual). "
                        "Use Contact quadrature = Gauss, or the pair without 'dual'.");
+    if (axisymmetric && fe_pair->displacement_degree() > 1 &&
+        contact_parameters.quadrature == Parameters::ContactQuadrature::gauss_lobatto)
+      throw InputError(pair + " with Contact/Contact quadrature = Gauss-Lobatto in an axisymmetric "
+                              "model: the nodal weight of a quadratic face's node on the axis, the "
+                              "integral of its shape function times 2 pi r, is zero, so its "
+                              "multiplier would be undetermined. Use Contact quadrature = Gauss.");
+    if (axisymmetric)
+      for (const auto &material : materials)
+        if (material.modified_volume())
+          throw InputError(material.slot +
+                           "/Volumetric formulation: F-bar and mixed are built for plane strain "
+                           "and 3D; an axisymmetric model (Geometry/Axisymmetric = true) uses "
+                           "Volumetric formulation = displacement.");
     if (!simplex_mesh())
       return;
     for (const auto &material : materials)
@@ -264,6 +283,28 @@ namespace StabilizedLagrangian
       geometry->create_mesh(triangulation);
     resolve_boundaries();
     assign_material_slots();
+    if (axisymmetric)
+      {
+        double smallest_radius = std::numeric_limits<double>::max(), size = 0.;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                smallest_radius = std::min(smallest_radius, cell->vertex(v)[0]);
+                size            = std::max(size, cell->diameter());
+              }
+        smallest_radius = Utilities::MPI::min(smallest_radius, mpi_communicator);
+        size            = Utilities::MPI::max(size, mpi_communicator);
+        if (smallest_radius < -1e-10 * size)
+          {
+            std::ostringstream message;
+            message << "Geometry/Axisymmetric = true: the mesh reaches x = " << smallest_radius
+                    << " mm, but x is the radius r >= 0 of the solid of revolution. Mesh only "
+                       "the half x >= 0 of the section (Geometry/half ball/Symmetry planes = "
+                       "true, or a Gmsh mesh of it).";
+            throw InputError(message.str());
+          }
+      }
     for (const auto &bc : boundary_conditions.dirichlet)
       require_boundary(bc.boundary_id, bc.section + "/Boundary id");
     for (const auto &bc : boundary_conditions.neumann)

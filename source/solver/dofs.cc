@@ -260,6 +260,46 @@ namespace StabilizedLagrangian
                                                Functions::ZeroFunction<dim>(dim),
                                                constraints,
                                                bc.components);
+    if (axisymmetric)
+      add_axis_constraints(constraints);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &constraints) const
+  {
+    // u_r = 0 on the axis r = 0: the faces lying on it, and single vertices
+    // that touch it
+    std::vector<types::global_dof_index> dofs;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          const double tolerance = 1e-10 * cell->diameter();
+          for (const unsigned int f : cell->face_indices())
+            {
+              const auto face = cell->face(f);
+              if (!face->at_boundary())
+                continue;
+              bool on_axis = true;
+              for (const unsigned int v : face->vertex_indices())
+                on_axis = on_axis && std::abs(face->vertex(v)[0]) < tolerance;
+              if (!on_axis)
+                continue;
+              dofs.resize(fe_u->n_dofs_per_face(f));
+              face->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (fe_u->face_system_to_component_index(i, f).first == 0 &&
+                    constraints.can_store_line(dofs[i]) && !constraints.is_constrained(dofs[i]))
+                  constraints.add_line(dofs[i]);
+            }
+          for (const unsigned int v : cell->vertex_indices())
+            if (std::abs(cell->vertex(v)[0]) < tolerance)
+              {
+                const types::global_dof_index dof = cell->vertex_dof_index(v, 0);
+                if (constraints.can_store_line(dof) && !constraints.is_constrained(dof))
+                  constraints.add_line(dof);
+              }
+        }
   }
 
   template <int dim>
@@ -572,6 +612,7 @@ namespace StabilizedLagrangian
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
       AffineConstraints<double> &) const;                                                         \
+  template void ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &) const;     \
   template void ContactProblem<dim>::find_plate_dofs();                                           \
   template void ContactProblem<dim>::find_point_load_dofs();                                      \
   template void ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &) const;    \

@@ -114,7 +114,8 @@ namespace StabilizedLagrangian
   Tensor<2, dim>
   ContactProblem<dim>::stress_at(const typename Triangulation<dim>::cell_iterator &cell,
                                  const Tensor<2, dim>                             &grad_u,
-                                 const Point<dim>                                 &point) const
+                                 const Point<dim>                                 &point,
+                                 const double                                      hoop) const
   {
     // the history lives at the cell's quadrature points: the nearest one's;
     // F-bar and mixed evaluate the kept volume change at the point
@@ -129,7 +130,7 @@ namespace StabilizedLagrangian
       for (unsigned int q = 1; q < cell_quadrature.size(); ++q)
         if (cell_quadrature.point(q).distance(unit) < cell_quadrature.point(nearest).distance(unit))
           nearest = q;
-    return committed_response(cell, nearest, unit, grad_u).stress;
+    return committed_response(cell, nearest, unit, grad_u, nullptr, hoop).stress;
   }
 
   template <int dim>
@@ -140,9 +141,11 @@ namespace StabilizedLagrangian
     FEValues<dim>                    fe_values(*fe_u,
                             cell_quadrature,
                             update_gradients | update_hessians | update_JxW_values |
-                                update_inverse_jacobians);
+                                update_inverse_jacobians | update_values |
+                                update_quadrature_points);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>>      gradients(cell_quadrature.size());
+    std::vector<Tensor<1, dim>>      values(cell_quadrature.size());
     std::vector<Tensor<3, dim>>      hessians(cell_quadrature.size());
     double                           energy = 0.;
     for (const auto &cell : dof_handler_u.active_cell_iterators())
@@ -151,6 +154,7 @@ namespace StabilizedLagrangian
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(u, gradients);
           fe_values[displacement].get_function_hessians(u, hessians);
+          fe_values[displacement].get_function_values(u, values);
           const Materials::Interface<dim> &material = material_of(cell);
           // mixed on Q2: the kept volume change v̄ = Σ c_a ψ_a varies in the
           // cell, ψ_a = ξ_(a−1) − ξ_c (a ≥ 1)
@@ -159,12 +163,15 @@ namespace StabilizedLagrangian
           double residual = 0.;
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
-              Tensor<2, dim> d_kept;
-              const auto     response = committed_response(cell,
+              Tensor<2, dim>    d_kept;
+              const Point<dim> &x        = fe_values.quadrature_point(q);
+              const double      hoop     = hoop_strain(x, values[q], gradients[q]);
+              const auto        response = committed_response(cell,
                                                        q,
                                                        cell_quadrature.point(q),
                                                        gradients[q],
-                                                       varying_volume ? &d_kept : nullptr);
+                                                       varying_volume ? &d_kept : nullptr,
+                                                       hoop);
               // div P = A : ∇∇u (A = ∂P/∂F) + ∂P/∂v̄ ∇v̄, no body force
               Tensor<1, dim> divergence;
               for (unsigned int i = 0; i < dim; ++i)
@@ -181,8 +188,22 @@ namespace StabilizedLagrangian
                       grad_kept[j] += coefficients[a] * fe_values.inverse_jacobian(q)[a - 1][j];
                   divergence += d_kept * grad_kept;
                 }
-              residual += divergence.norm_square() * fe_values.JxW(q);
-              energy += scalar_product(response.stress, gradients[q]) * fe_values.JxW(q);
+              if (axisymmetric)
+                {
+                  // (1/r) ∂(r P_ij)/∂x_j − δ_i1 P_θθ/r, with ∂P/∂F₃₃ ∇(u_r/r) in ∂P_ij/∂x_j
+                  const double   r         = x[0];
+                  Tensor<1, dim> grad_hoop = gradients[q][0] / r;
+                  grad_hoop[0] -= values[q][0] / (r * r);
+                  divergence += response.hoop_column * grad_hoop;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    divergence[i] += response.stress[i][0] / r;
+                  divergence[0] -= response.hoop_stress / r;
+                }
+              const double JxW = fe_values.JxW(q) * radial_weight(x);
+              residual += divergence.norm_square() * JxW;
+              energy +=
+                  (scalar_product(response.stress, gradients[q]) + response.hoop_stress * hoop) *
+                  JxW;
             }
           const double h = cell->diameter();
           squared[cell->active_cell_index()] += h * h * residual / material.youngs_modulus();
@@ -198,17 +219,19 @@ namespace StabilizedLagrangian
     const Quadrature<dim - 1> face_quadrature = face_gauss(fe_u->degree + 1);
     const UpdateFlags         flags =
         update_gradients | update_normal_vectors | update_quadrature_points | update_JxW_values;
-    FEInterfaceValues<dim>           interface(*fe_u, face_quadrature, flags);
+    FEInterfaceValues<dim>           interface(*fe_u, face_quadrature, flags | update_values);
     FEFaceValues<dim>                boundary(*fe_u, face_quadrature, flags | update_values);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<2, dim>> inside(face_quadrature.size()), outside(face_quadrature.size());
+    std::vector<Tensor<1, dim>> face_u(face_quadrature.size());
     const unsigned int          none = numbers::invalid_unsigned_int;
 
     // ½ h_F ‖⟦P N⟧‖² to each side of an interior face. The jump is the same
     // seen from either side, so it is computed once: by the side of lower
     // index when both cells are this rank's, by the own side when the other is
     // a ghost (whose owner adds its half).
-    using TriaCell      = typename Triangulation<dim>::cell_iterator;
+    using TriaCell = typename Triangulation<dim>::cell_iterator;
+    // (u continuous: the hoop strain of an axisymmetric model is that of side a)
     const auto add_jump = [&](const TriaCell                    &a,
                               const FEFaceValuesBase<dim>       &on_a,
                               const std::vector<Tensor<2, dim>> &gradients_a,
@@ -216,13 +239,16 @@ namespace StabilizedLagrangian
                               const std::vector<Tensor<2, dim>> &gradients_b,
                               const double                       h) {
       double jump = 0.;
+      if (axisymmetric)
+        on_a[displacement].get_function_values(u, face_u);
       for (unsigned int q = 0; q < on_a.n_quadrature_points; ++q)
         {
-          const Point<dim> &x = on_a.quadrature_point(q);
-          jump += ((stress_at(a, gradients_a[q], x) - stress_at(b, gradients_b[q], x)) *
+          const Point<dim> &x    = on_a.quadrature_point(q);
+          const double      hoop = axisymmetric ? hoop_strain(x, face_u[q], gradients_a[q]) : 0.;
+          jump += ((stress_at(a, gradients_a[q], x, hoop) - stress_at(b, gradients_b[q], x, hoop)) *
                    on_a.normal_vector(q))
                       .norm_square() *
-                  on_a.JxW(q);
+                  on_a.JxW(q) * radial_weight(x);
         }
       for (const TriaCell &side : {a, b})
         if (side->is_locally_owned())
@@ -365,10 +391,11 @@ namespace StabilizedLagrangian
                 load(d) -= bc.stiffness[d] * (values[q][d] - prescribed(d));
             }
         const Tensor<1, dim> traction =
-            stress_at(cell, gradients[q], x) * face_values.normal_vector(q);
+            stress_at(cell, gradients[q], x, hoop_strain(x, values[q], gradients[q])) *
+            face_values.normal_vector(q);
         for (unsigned int d = 0; d < dim; ++d)
           if (free[d])
-            residual += std::pow(traction[d] - load[d], 2) * face_values.JxW(q);
+            residual += std::pow(traction[d] - load[d], 2) * face_values.JxW(q) * radial_weight(x);
       }
     squared[cell->active_cell_index()] +=
         cell->face(f)->diameter() * residual / material_of(cell).youngs_modulus();
@@ -410,8 +437,10 @@ namespace StabilizedLagrangian
             const double         lambda     = k.contact_pressure;
             const Tensor<1, dim> applied    = point.normal_traction() * state.pairing.normal +
                                            state.pairing.from_tangential_components(tangential);
+            const Point<dim>    &x = face_values->quadrature_point(q);
             const Tensor<1, dim> traction =
-                stress_at(face.cell, gradients[q], face_values->quadrature_point(q)) *
+                stress_at(
+                    face.cell, gradients[q], x, hoop_strain(x, k.displacement, gradients[q])) *
                 face_values->normal_vector(q);
             residual += (traction - applied).norm_square() * k.JxW;
             gap_terms += (h / E * std::pow(std::max(-lambda, 0.), 2) +
@@ -461,16 +490,20 @@ namespace StabilizedLagrangian
     FEFaceValues<dim> face_values(*fe_u, rule, update_normal_vectors | update_quadrature_points);
     // (on simplices the Gauss points of the same order: the centroid for P1)
     const Quadrature<dim> barlow = cell_gauss(fe_u->degree);
-    FEValues<dim>         barlow_values(*fe_u, barlow, update_gradients | update_quadrature_points);
+    FEValues<dim>         barlow_values(
+        *fe_u, barlow, update_values | update_gradients | update_quadrature_points);
     std::vector<Tensor<2, dim>> gradients(barlow.size());
+    std::vector<Tensor<1, dim>> values(barlow.size());
     StressRecovery<dim>         recovery(dof_handler_u, fe_u->degree, [&](const auto &cell) {
       barlow_values.reinit(cell);
       barlow_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
+      barlow_values[FEValuesExtractors::Vector(0)].get_function_values(u, values);
       std::vector<std::pair<Point<dim>, Tensor<2, dim>>> samples;
       for (unsigned int q = 0; q < barlow.size(); ++q)
         {
           const Point<dim> &x = barlow_values.quadrature_point(q);
-          samples.emplace_back(x, stress_at(cell, gradients[q], x));
+          samples.emplace_back(
+              x, stress_at(cell, gradients[q], x, hoop_strain(x, values[q], gradients[q])));
         }
       return samples;
     });
@@ -605,7 +638,8 @@ namespace StabilizedLagrangian
   template Tensor<2, dim> ContactProblem<dim>::stress_at(                                           \
       const typename Triangulation<dim>::cell_iterator &,                                           \
       const Tensor<2, dim> &,                                                                       \
-      const Point<dim> &) const;                                                                    \
+      const Point<dim> &,                                                                           \
+      double) const;                                                                                \
   template void ContactProblem<dim>::add_boundary_residual(                                         \
       const typename DoFHandler<dim>::active_cell_iterator &,                                       \
       unsigned int,                                                                                 \

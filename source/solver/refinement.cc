@@ -190,8 +190,9 @@ namespace StabilizedLagrangian
                         {
                           bc.reference->vector_value(face_values.quadrature_point(q), u_0);
                           for (unsigned int d = 0; d < dim; ++d)
-                            reactions[b][d] -=
-                                bc.stiffness[d] * (values[q][d] - u_0(d)) * face_values.JxW(q);
+                            reactions[b][d] -= bc.stiffness[d] * (values[q][d] - u_0(d)) *
+                                               face_values.JxW(q) *
+                                               radial_weight(face_values.quadrature_point(q));
                         }
                     }
           }
@@ -323,10 +324,14 @@ namespace StabilizedLagrangian
   {
     // ‖u_N − u_k‖ in the energy norm of the tangent of the last state
     // (for a linear material, the energy norm itself)
-    FEValues<dim> fe_values(*fe_u, cell_quadrature, update_gradients | update_JxW_values);
+    FEValues<dim>                    fe_values(*fe_u,
+                            cell_quadrature,
+                            update_values | update_gradients | update_quadrature_points |
+                                update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
     const unsigned int               n_q = cell_quadrature.size();
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
+    std::vector<Tensor<1, dim>>      last_u(n_q), earlier_u(n_q); // axisymmetric: hoop strains
     std::vector<double>              squared(earlier_cycles.size(), 0.);
     compute_volume_fields(earlier_cycles.back());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
@@ -334,18 +339,32 @@ namespace StabilizedLagrangian
         {
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(earlier_cycles.back(), last);
-          std::vector<Tensor<4, dim>> tangents(n_q);
+          fe_values[displacement].get_function_values(earlier_cycles.back(), last_u);
+          std::vector<Materials::Response<dim>> tangents(n_q);
           for (unsigned int q = 0; q < n_q; ++q)
-            tangents[q] = committed_response(cell, q, cell_quadrature.point(q), last[q]).tangent;
+            tangents[q] =
+                committed_response(cell,
+                                   q,
+                                   cell_quadrature.point(q),
+                                   last[q],
+                                   nullptr,
+                                   hoop_strain(fe_values.quadrature_point(q), last_u[q], last[q]));
           for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
             {
               fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);
+              fe_values[displacement].get_function_values(earlier_cycles[k], earlier_u);
               for (unsigned int q = 0; q < n_q; ++q)
                 {
+                  const Point<dim>    &x     = fe_values.quadrature_point(q);
                   const Tensor<2, dim> error = last[q] - earlier[q];
+                  const double         hoop =
+                      hoop_strain(x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
+                  const auto &A = tangents[q];
                   squared[k] +=
-                      scalar_product(error, double_contract<2, 0, 3, 1>(tangents[q], error)) *
-                      fe_values.JxW(q);
+                      (scalar_product(error, double_contract<2, 0, 3, 1>(A.tangent, error)) +
+                       hoop * (scalar_product(A.hoop_row + A.hoop_column, error) +
+                               A.hoop_hoop * hoop)) *
+                      fe_values.JxW(q) * radial_weight(x);
                 }
             }
         }

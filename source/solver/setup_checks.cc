@@ -26,6 +26,16 @@ namespace StabilizedLagrangian
     // a zero eigenvalue are the motions no support holds.
     if (!partner->is_rigid())
       return ""; // two bodies: each is held by the other or by its conditions
+    if (axisymmetric)
+      {
+        // the hoop strain holds u_r: the one rigid motion is along the axis
+        bool held = false;
+        for (const auto &bc : boundary_conditions.dirichlet)
+          held = held || bc.components[1];
+        for (const auto &bc : boundary_conditions.springs)
+          held = held || bc.stiffness[1] > 0.;
+        return held ? "" : "the translation along y";
+      }
     const unsigned int n_rotations = dim == 2 ? 1 : 3;
     const unsigned int n_modes     = dim + n_rotations;
     const auto         box         = GridTools::compute_bounding_box(triangulation);

@@ -27,7 +27,9 @@ namespace StabilizedLagrangian
     // where the face is plane.
     if (!fe_pair->dual_multiplier())
       return;
-    FEFaceValues<dim> values(*fe_m, contact_quadrature, update_values | update_JxW_values);
+    // (axisymmetric: M and D with the weight 2πr of the model's measure)
+    FEFaceValues<dim> values(
+        *fe_m, contact_quadrature, update_values | update_JxW_values | update_quadrature_points);
     for (auto &face : contact_faces)
       {
         values.reinit(multiplier_cell(face.cell), face.face_no);
@@ -43,7 +45,8 @@ namespace StabilizedLagrangian
           for (unsigned int p = 0; p < n; ++p)
             for (unsigned int r = 0; r < n; ++r)
               mass(p, r) += values.shape_value(node_shapes[p], q) *
-                            values.shape_value(node_shapes[r], q) * values.JxW(q);
+                            values.shape_value(node_shapes[r], q) * values.JxW(q) *
+                            radial_weight(values.quadrature_point(q));
         Vector<double> row_sums(n);
         for (unsigned int p = 0; p < n; ++p)
           for (unsigned int r = 0; r < n; ++r)

@@ -83,6 +83,18 @@ namespace StabilizedLagrangian
           "4 and 5 the faces at y min and y max (3D); half ball: 2 the curved faces within "
           "`Contact zone radius` of the lowest point, 0 the rest of the curved side, 3 the "
           "flat side. gmsh: the file's physical groups, by name or id.");
+      prm.enter_subsection("Geometry");
+      prm.declare_entry(
+          "Axisymmetric",
+          "false",
+          Patterns::Bool(),
+          "2D only. false: plane strain (forces per unit thickness, N/mm). true: the mesh is "
+          "the meridian section of a solid of revolution about the y axis, x = r >= 0 the "
+          "radius (hoop strain u_r/r, integrals weighted by 2 pi r; forces, reactions and "
+          "energies are totals over the circumference, in N). The nodes on the axis r = 0 are "
+          "held at u_r = 0 without a Dirichlet condition. Loads and obstacles must be "
+          "axisymmetric too; a point load is a ring load of that total force.");
+      prm.leave_subsection();
     }
 
     /** @brief Build the geometry chosen in the `Geometry` subsection. */

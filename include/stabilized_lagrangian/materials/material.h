@@ -76,6 +76,15 @@ namespace StabilizedLagrangian
       Tensor<4, dim> tangent;
       /** Cauchy stress in the out-of-plane direction (plane strain, dim = 2). */
       double out_of_plane_stress = 0.;
+      /**
+       * dim = 2: the out-of-plane (hoop) blocks of the 3D response, which the
+       * axisymmetric weak form adds for the hoop stretch F₃₃ = 1 + u_r/r:
+       * P₃₃, ∂P₃₃/∂F_kl, ∂P_kl/∂F₃₃ (k, l in the plane) and ∂P₃₃/∂F₃₃.
+       */
+      double         hoop_stress = 0.;
+      Tensor<2, dim> hoop_row    = Tensor<2, dim>();
+      Tensor<2, dim> hoop_column = Tensor<2, dim>();
+      double         hoop_hoop   = 0.;
     };
 
     /**
@@ -118,14 +127,19 @@ namespace StabilizedLagrangian
 
       /**
        * @brief Stress, tangent and updated history for a displacement gradient
-       * of dimension dim (plane strain in 2D: u₃ = 0, ∂/∂x₃ = 0).
+       * of dimension dim: in 2D plane strain (u₃ = 0, ∂/∂x₃ = 0), or with
+       * @p hoop = u_r/r ≠ 0 the axisymmetric gradient (x₁ = r, x₃ = θ), whose
+       * component 33 is the hoop strain.
        */
       Response<dim>
       evaluate(const Tensor<2, dim>          &grad_u,
                const ArrayView<const double> &old_history,
-               const ArrayView<double>       &new_history) const
+               const ArrayView<double>       &new_history,
+               const double                   hoop = 0.) const
       {
-        const Tensor<2, 3> grad_u_3d = embed_in_3d(grad_u);
+        Tensor<2, 3> grad_u_3d = embed_in_3d(grad_u);
+        if (dim == 2)
+          grad_u_3d[2][2] = hoop;
         return in_plane_response(grad_u_3d, evaluate_3d(grad_u_3d, old_history, new_history));
       }
 
@@ -139,6 +153,17 @@ namespace StabilizedLagrangian
         Response<dim> result;
         result.stress  = in_plane_block<dim>(response.stress);
         result.tangent = in_plane_block<dim>(response.tangent);
+        if (dim == 2)
+          {
+            result.hoop_stress = response.stress[2][2];
+            result.hoop_hoop   = response.tangent[2][2][2][2];
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                {
+                  result.hoop_row[k][l]    = response.tangent[2][2][k][l];
+                  result.hoop_column[k][l] = response.tangent[k][l][2][2];
+                }
+          }
         if (dim == 2 && !is_finite_strain())
           result.out_of_plane_stress = response.stress[2][2];
         else if (dim == 2)
@@ -211,7 +236,8 @@ namespace StabilizedLagrangian
     Tensor<2, 3>
     cauchy_stress(const Tensor<2, dim> &grad_u,
                   const Response<dim>  &response,
-                  const bool            finite_strain)
+                  const bool            finite_strain,
+                  const double          hoop = 0.)
     {
       Tensor<2, dim> sigma = response.stress;
       if (finite_strain)
@@ -219,7 +245,8 @@ namespace StabilizedLagrangian
           Tensor<2, dim> F = grad_u;
           for (unsigned int d = 0; d < dim; ++d)
             F[d][d] += 1.;
-          sigma = response.stress * transpose(F) / determinant(F);
+          // J = det F, with the hoop stretch 1 + u_r/r of an axisymmetric model
+          sigma = response.stress * transpose(F) / (determinant(F) * (1. + hoop));
         }
       Tensor<2, 3> result;
       for (unsigned int i = 0; i < dim; ++i)

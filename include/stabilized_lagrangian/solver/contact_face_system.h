@@ -244,8 +244,10 @@ namespace StabilizedLagrangian
             rhs(n_d + a) +=
                 w * psi[a] *
                 (m_component[a] == 0 ? pressure_residual : semi_residual[m_component[a] - 1]);
+            // ∫|ψ_a|: positive also where ψ_a changes sign (a quadratic or dual
+            // basis function, whose ∫ψ_a 2πr vanishes on the axis of revolution)
             length_weights(n_d + a) +=
-                w * psi[a] * (m_component[a] == 0 ? 1. : point.semi_multiplier_weight());
+                w * std::abs(psi[a]) * (m_component[a] == 0 ? 1. : point.semi_multiplier_weight());
           }
       }
 
@@ -336,7 +338,7 @@ namespace StabilizedLagrangian
                             (c == 0 ? nodes[a]->pressure_residual_at(gap)
                                     : nodes[a]->semi_multiplier_residual()[c - 1]);
             length_weights(n_d + a) +=
-                w * psi[a] * (c == 0 ? 1. : nodes[a]->semi_multiplier_weight());
+                w * std::abs(psi[a]) * (c == 0 ? 1. : nodes[a]->semi_multiplier_weight());
           }
       }
 

@@ -908,6 +908,27 @@ namespace StabilizedLagrangian
     {
       return geometry->simplex_cells();
     }
+    /**
+     * The measure of the model at @p x: 2πr (r = x₁) in an axisymmetric model,
+     * whose integrals are over the solid of revolution (forces are totals over
+     * the circumference), 1 otherwise (2D: per unit thickness).
+     */
+    double
+    radial_weight(const Point<dim> &x) const
+    {
+      return axisymmetric ? 2. * numbers::PI * x[0] : 1.;
+    }
+    /**
+     * The hoop strain u_r / r at @p x of an axisymmetric model, 0 otherwise;
+     * on the axis its limit ∂u_r/∂r (u_r = 0 there), from @p grad_u.
+     */
+    double
+    hoop_strain(const Point<dim> &x, const Tensor<1, dim> &u, const Tensor<2, dim> &grad_u) const
+    {
+      if (!axisymmetric)
+        return 0.;
+      return x[0] > 0. ? u[0] / x[0] : grad_u[0][0];
+    }
     /** The reference cell of the mesh's cells. */
     ReferenceCell
     cell_shape() const
@@ -1073,6 +1094,9 @@ namespace StabilizedLagrangian
     /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
     void
     add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
+    /** Axisymmetric: u_r = 0 at the DoFs on the axis r = 0. */
+    void
+    add_axis_constraints(AffineConstraints<double> &constraints) const;
     /**
      * Each rigid plate's reference DoF per tied component (the smallest index
      * on its boundary that no Dirichlet condition or hanging node constrains),
@@ -1187,7 +1211,8 @@ namespace StabilizedLagrangian
      * The response of @p cell's material at its quadrature point @p q (the
      * history's) or reference point @p unit for @p grad_u, from the committed
      * history (that of the last converged state); the updated history is
-     * discarded. With F-bar and mixed, ∂P̃/∂v̄ into @p d_kept when given. For
+     * discarded. With F-bar and mixed, ∂P̃/∂v̄ into @p d_kept when given; in an
+     * axisymmetric model @p hoop is the hoop strain u_r/r. For
      * the output and the error estimate, never the assembly.
      */
     Materials::Response<dim>
@@ -1195,13 +1220,14 @@ namespace StabilizedLagrangian
                        const unsigned int                                q,
                        const Point<dim>                                 &unit,
                        const Tensor<2, dim>                             &grad_u,
-                       Tensor<2, dim>                                   *d_kept = nullptr) const
+                       Tensor<2, dim>                                   *d_kept = nullptr,
+                       const double                                      hoop   = 0.) const
     {
       const auto          history = material_history.committed(cell->active_cell_index(), q);
       std::vector<double> discarded(history.size());
       const auto         &body = body_of(cell);
       if (!body.modified_volume())
-        return body.model->evaluate(grad_u, history, make_array_view(discarded));
+        return body.model->evaluate(grad_u, history, make_array_view(discarded), hoop);
       // The estimate evaluates the stress between the quadrature points too,
       // where a cell whose quadrature points are admissible may be inverted
       // (J ≤ 0 at a face point of an hourglassing cell): there, the centre's state.
@@ -1223,7 +1249,8 @@ namespace StabilizedLagrangian
      * history @p committed (the updated one into @p trial): P and ∂P/∂F at
      * @p grad_u; with F-bar or mixed the weak-form stress P̃, ∂P̃/∂F and, into
      * @p d_kept when given, ∂P̃/∂v̄ for the volume change @p kept the point
-     * keeps (include/stabilized_lagrangian/materials/f_bar.h).
+     * keeps (include/stabilized_lagrangian/materials/f_bar.h); @p hoop: the hoop
+     * strain u_r/r of an axisymmetric model (displacement formulation only).
      */
     Materials::Response<dim>
     material_response(const Materials::BodyMaterial<dim> &body,
@@ -1231,10 +1258,11 @@ namespace StabilizedLagrangian
                       const double                        kept,
                       const ArrayView<const double>      &committed,
                       const ArrayView<double>            &trial,
-                      Tensor<2, dim>                     *d_kept) const
+                      Tensor<2, dim>                     *d_kept,
+                      const double                        hoop = 0.) const
     {
       if (!body.modified_volume())
-        return body.model->evaluate(grad_u, committed, trial);
+        return body.model->evaluate(grad_u, committed, trial, hoop);
       const Materials::FBar<dim> f_bar(grad_u, kept, body.model->is_finite_strain());
       Materials::Response<dim>   weak;
       Tensor<2, dim>             unused;
@@ -1393,12 +1421,14 @@ namespace StabilizedLagrangian
     share_ghost_history();
     /**
      * First Piola–Kirchhoff stress of @p cell's material for @p grad_u at
-     * @p point, with the history of the cell's quadrature point nearest to it.
+     * @p point, with the history of the cell's quadrature point nearest to it
+     * (axisymmetric: @p hoop the hoop strain u_r/r there).
      */
     Tensor<2, dim>
     stress_at(const typename Triangulation<dim>::cell_iterator &cell,
               const Tensor<2, dim>                             &grad_u,
-              const Point<dim>                                 &point) const;
+              const Point<dim>                                 &point,
+              const double                                      hoop = 0.) const;
     /** Add h_K² ‖div P‖²_K / E to @p squared; return ∫ P:∇u over the owned cells. */
     double
     add_volume_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &squared) const;
@@ -1510,6 +1540,8 @@ namespace StabilizedLagrangian
     ConditionalOStream pcout;
     TimerOutput        timer;
 
+    /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
+    bool                                axisymmetric = false;
     Parameters::Contact                 contact_parameters;
     Parameters::BoundaryConditions<dim> boundary_conditions;
     Parameters::LoadStepping            load_stepping;
@@ -1631,7 +1663,7 @@ namespace StabilizedLagrangian
     find_point_load_dofs();
     /**
      * owned, multiplier rows: the weight that turns the row's residual into a
-     * length, ∫ψ_j on the λ_n rows and ∫ψ_j (χ_f s + (1 − χ_f) r_t) on the Λ rows
+     * length, ∫|ψ_j| on the λ_n rows and ∫|ψ_j| (χ_f s + (1 − χ_f) r_t) on the Λ rows
      */
     TrilinosWrappers::MPI::Vector multiplier_length_weights;
     /** the multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row */
