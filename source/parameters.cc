@@ -316,6 +316,12 @@ namespace StabilizedLagrangian
           {
             prm.enter_subsection("Dirichlet " + name);
             boundary_entry("with a prescribed displacement");
+            prm.declare_entry("Point",
+                              "",
+                              Patterns::Anything(),
+                              "Instead of a boundary: the coordinates (mm) of one vertex of the "
+                              "mesh whose displacement is prescribed (for instance one node held "
+                              "vertically); Boundary id stays -1. Empty: the boundary.");
             prm.declare_entry("Components",
                               dim == 2 ? "x, y" : "x, y, z",
                               Patterns::MultipleSelection(component_names<dim>()),
@@ -493,6 +499,7 @@ namespace StabilizedLagrangian
     BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
     {
       dirichlet.clear();
+      point_dirichlet.clear();
       neumann.clear();
       springs.clear();
       plates.clear();
@@ -515,22 +522,54 @@ namespace StabilizedLagrangian
             boundary_id_or_name(value, "Boundary conditions/" + section + "/Boundary id");
         return std::make_pair(id.value_or(0), id ? "" : value);
       };
+      // the vertex a `Point` entry of the current subsection names, if any
+      const auto vertex = [&prm](const std::string &section) -> std::optional<Point<dim>> {
+        const std::string text = Utilities::trim(prm.get("Point"));
+        if (text.empty())
+          return std::nullopt;
+        Point<dim> point;
+        try
+          {
+            const auto values = Utilities::string_to_double(Utilities::split_string_list(text));
+            if (values.size() != dim)
+              throw std::invalid_argument("count");
+            for (unsigned int d = 0; d < dim; ++d)
+              point[d] = values[d];
+          }
+        catch (...)
+          {
+            throw InputError(section + "/Point = '" + text + "': " + std::to_string(dim) +
+                             " comma-separated coordinates (mm) of a vertex of the mesh.");
+          }
+        return point;
+      };
       prm.enter_subsection("Boundary conditions");
       for (const auto &name : sections.dirichlet)
         {
           const std::string section = "Dirichlet " + name;
           prm.enter_subsection(section);
-          if (const auto where = boundary(section))
-            {
-              std::vector<bool> mask(dim, false);
-              for (const auto &c : Utilities::split_string_list(prm.get("Components")))
-                mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
-              dirichlet.push_back(DirichletCondition<dim>{where->first,
-                                                          where->second,
-                                                          ComponentMask(mask),
-                                                          parse_function(section, "Displacement"),
-                                                          "Boundary conditions/" + section});
-            }
+          std::vector<bool> mask(dim, false);
+          for (const auto &c : Utilities::split_string_list(prm.get("Components")))
+            mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
+          const auto where = boundary(section);
+          const auto point = vertex("Boundary conditions/" + section);
+          if (where && point)
+            throw InputError("Boundary conditions/" + section +
+                             ": both Boundary id and Point are given; a condition holds on a "
+                             "boundary (Point empty) or at one node (Boundary id = -1).");
+          if (where)
+            dirichlet.push_back(DirichletCondition<dim>{where->first,
+                                                        where->second,
+                                                        ComponentMask(mask),
+                                                        parse_function(section, "Displacement"),
+                                                        "Boundary conditions/" + section});
+          if (point)
+            point_dirichlet.push_back(
+                PointDirichletCondition<dim>{*point,
+                                             ComponentMask(mask),
+                                             parse_function(section, "Displacement"),
+                                             name,
+                                             "Boundary conditions/" + section});
           prm.leave_subsection();
         }
       for (const auto &name : sections.neumann)
@@ -596,27 +635,9 @@ namespace StabilizedLagrangian
         {
           const std::string section = "Boundary conditions/Point load " + name;
           prm.enter_subsection("Point load " + name);
-          const std::string text = Utilities::trim(prm.get("Point"));
-          if (!text.empty())
-            {
-              const auto parts = Utilities::split_string_list(text);
-              Point<dim> point;
-              try
-                {
-                  const auto values = Utilities::string_to_double(parts);
-                  if (values.size() != dim)
-                    throw std::invalid_argument("count");
-                  for (unsigned int d = 0; d < dim; ++d)
-                    point[d] = values[d];
-                }
-              catch (...)
-                {
-                  throw InputError(section + "/Point = '" + text + "': " + std::to_string(dim) +
-                                   " comma-separated coordinates (mm) of a vertex of the mesh.");
-                }
-              point_loads.push_back(
-                  PointLoad<dim>{point, parse_function("Point load " + name, "Force"), section});
-            }
+          if (const auto point = vertex(section))
+            point_loads.push_back(
+                PointLoad<dim>{*point, parse_function("Point load " + name, "Force"), section});
           prm.leave_subsection();
         }
       prm.leave_subsection();

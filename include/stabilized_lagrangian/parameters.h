@@ -176,6 +176,19 @@ namespace StabilizedLagrangian
       std::string                            section; ///< "Boundary conditions/Rigid plate <name>"
     };
 
+    /**
+     * @brief A prescribed displacement on some components of one node of the
+     * mesh, the vertex at a given point (`Dirichlet <name>` with `Point`).
+     */
+    template <int dim> struct PointDirichletCondition
+    {
+      Point<dim>                             point;        ///< where: a vertex of the mesh (mm)
+      ComponentMask                          components;   ///< the prescribed ones
+      std::shared_ptr<BoundaryFunction<dim>> displacement; ///< mm, evaluated at the point
+      std::string                            name;         ///< the subsection's, for the columns
+      std::string                            section; ///< "Boundary conditions/Dirichlet <name>"
+    };
+
     /** @brief A force F(t) on one node of the mesh, the vertex at a given point. */
     template <int dim> struct PointLoad
     {
@@ -219,11 +232,13 @@ namespace StabilizedLagrangian
      */
     template <int dim> struct BoundaryConditions
     {
-      std::vector<DirichletCondition<dim>>  dirichlet;
-      std::vector<NeumannCondition<dim>>    neumann;
-      std::vector<SpringCondition<dim>>     springs;
-      std::vector<RigidPlateCondition<dim>> plates;
-      std::vector<PointLoad<dim>>           point_loads;
+      std::vector<DirichletCondition<dim>> dirichlet;
+      /** the `Dirichlet <name>` subsections with a `Point`: one node each */
+      std::vector<PointDirichletCondition<dim>> point_dirichlet;
+      std::vector<NeumannCondition<dim>>        neumann;
+      std::vector<SpringCondition<dim>>         springs;
+      std::vector<RigidPlateCondition<dim>>     plates;
+      std::vector<PointLoad<dim>>               point_loads;
 
       /**
        * Declare the subsections @p sections names (those already declared

@@ -84,6 +84,13 @@ namespace StabilizedLagrangian
                [b, d](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.reactions[b][d];
                }});
+      for (unsigned int p = 0; p < supports.reaction_points.size(); ++p)
+        for (unsigned int d = 0; d < dim; ++d)
+          columns.push_back(
+              {"reaction_point_" + supports.reaction_points[p] + "_" + "xyz"[d] + "_N",
+               [p, d](std::ostream &out, const StepRow &row) {
+                 out << std::setprecision(10) << row.record.point_reactions[p][d];
+               }});
       for (unsigned int p = 0; p < supports.plates.size(); ++p)
         for (unsigned int d = 0; d < dim; ++d)
           {

@@ -122,6 +122,7 @@ namespace StabilizedLagrangian
     hanging_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
     hanging_constraints.close();
+    find_point_dofs();
     newton_constraints.clear();
     newton_constraints.reinit(locally_relevant);
     newton_constraints.merge(hanging_constraints);
@@ -131,7 +132,6 @@ namespace StabilizedLagrangian
     newton_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
     newton_constraints.close();
-    find_point_load_dofs();
 
     system_rhs.reinit(locally_owned, mpi_communicator);
     solution.reinit(locally_owned, mpi_communicator);
@@ -260,6 +260,12 @@ namespace StabilizedLagrangian
                                                Functions::ZeroFunction<dim>(dim),
                                                constraints,
                                                bc.components);
+    for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (boundary_conditions.point_dirichlet[p].components[c] &&
+            constraints.can_store_line(point_dirichlet_dofs[p][c]) &&
+            !constraints.is_constrained(point_dirichlet_dofs[p][c]))
+          constraints.add_line(point_dirichlet_dofs[p][c]);
     if (axisymmetric)
       add_axis_constraints(constraints);
   }
@@ -352,55 +358,60 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::find_point_load_dofs()
+  ContactProblem<dim>::find_point_dofs()
   {
     point_load_dofs.clear();
-    if (boundary_conditions.point_loads.empty())
-      return;
+    point_dirichlet_dofs.clear();
+    for (const auto &load : boundary_conditions.point_loads)
+      point_load_dofs.push_back(vertex_dofs(load.point, load.section));
+    for (const auto &bc : boundary_conditions.point_dirichlet)
+      point_dirichlet_dofs.push_back(vertex_dofs(bc.point, bc.section));
+  }
+
+  template <int dim>
+  std::array<types::global_dof_index, dim>
+  ContactProblem<dim>::vertex_dofs(const Point<dim> &point, const std::string &section) const
+  {
     double size = 0.;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         size = std::max(size, cell->diameter());
-    size                    = Utilities::MPI::max(size, mpi_communicator);
-    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-    for (const auto &load : boundary_conditions.point_loads)
+    size                       = Utilities::MPI::max(size, mpi_communicator);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
+    double             nearest = std::numeric_limits<double>::max();
+    std::array<types::global_dof_index, dim> dofs;
+    Point<dim>                               vertex;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          if (cell->vertex(v).distance(point) < nearest)
+            {
+              nearest = cell->vertex(v).distance(point);
+              vertex  = cell->vertex(v);
+              for (unsigned int c = 0; c < dim; ++c)
+                dofs[c] = cell->vertex_dof_index(v, c);
+            }
+    const double       closest = Utilities::MPI::min(nearest, mpi_communicator);
+    const unsigned int owner   = Utilities::MPI::min(
+        nearest == closest ? rank : numbers::invalid_unsigned_int, mpi_communicator);
+    dofs   = Utilities::MPI::broadcast(mpi_communicator, dofs, owner);
+    vertex = Utilities::MPI::broadcast(mpi_communicator, vertex, owner);
+    // (1e-6 of the largest cell: a point written with 6 significant digits)
+    if (closest > 1e-6 * size)
       {
-        double                                   nearest = std::numeric_limits<double>::max();
-        std::array<types::global_dof_index, dim> dofs;
-        Point<dim>                               vertex;
-        for (const auto &cell : dof_handler_u.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const unsigned int v : cell->vertex_indices())
-              if (cell->vertex(v).distance(load.point) < nearest)
-                {
-                  nearest = cell->vertex(v).distance(load.point);
-                  vertex  = cell->vertex(v);
-                  for (unsigned int c = 0; c < dim; ++c)
-                    dofs[c] = cell->vertex_dof_index(v, c);
-                }
-        const double       closest = Utilities::MPI::min(nearest, mpi_communicator);
-        const unsigned int owner   = Utilities::MPI::min(
-            nearest == closest ? rank : numbers::invalid_unsigned_int, mpi_communicator);
-        dofs   = Utilities::MPI::broadcast(mpi_communicator, dofs, owner);
-        vertex = Utilities::MPI::broadcast(mpi_communicator, vertex, owner);
-        // (1e-6 of the largest cell: a point written with 6 significant digits)
-        if (closest > 1e-6 * size)
-          {
-            std::ostringstream message;
-            message << load.section << "/Point: no vertex of the mesh there; the nearest is ("
-                    << vertex << "), " << closest << " mm away. A point load acts on a vertex.";
-            throw InputError(message.str());
-          }
-        bool hanging = false;
-        for (unsigned int c = 0; c < dim; ++c)
-          hanging |=
-              locally_owned_u.is_element(dofs[c]) && hanging_constraints.is_constrained(dofs[c]);
-        if (Utilities::MPI::logical_or(hanging, mpi_communicator))
-          throw InputError(load.section +
-                           "/Point: the vertex there hangs on a refined neighbour; put the load "
-                           "on a vertex of the coarser cells.");
-        point_load_dofs.push_back(dofs);
+        std::ostringstream message;
+        message << section << "/Point: no vertex of the mesh there; the nearest is (" << vertex
+                << "), " << closest << " mm away. The condition acts on a vertex.";
+        throw InputError(message.str());
       }
+    bool hanging = false;
+    for (unsigned int c = 0; c < dim; ++c)
+      hanging |= locally_owned_u.is_element(dofs[c]) && hanging_constraints.is_constrained(dofs[c]);
+    if (Utilities::MPI::logical_or(hanging, mpi_communicator))
+      throw InputError(section +
+                       "/Point: the vertex there hangs on a refined neighbour; put the condition "
+                       "on a vertex of the coarser cells.");
+    return dofs;
   }
 
   template <int dim>
@@ -614,7 +625,9 @@ namespace StabilizedLagrangian
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &) const;     \
   template void ContactProblem<dim>::find_plate_dofs();                                           \
-  template void ContactProblem<dim>::find_point_load_dofs();                                      \
+  template void ContactProblem<dim>::find_point_dofs();                                           \
+  template std::array<types::global_dof_index, dim> ContactProblem<dim>::vertex_dofs(             \
+      const Point<dim> &, const std::string &) const;                                             \
   template void ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &) const;    \
   template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
       const;                                                                                      \

@@ -575,6 +575,17 @@ namespace StabilizedLagrangian
             dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
         bc.displacement->check_finite(mpi_communicator);
       }
+    Vector<double> at_point(dim);
+    for (unsigned int p = 0; p < boundary_conditions.point_dirichlet.size(); ++p)
+      {
+        const auto &bc = boundary_conditions.point_dirichlet[p];
+        bc.displacement->set_time(t);
+        bc.displacement->vector_value(bc.point, at_point);
+        for (unsigned int c = 0; c < dim; ++c)
+          if (bc.components[c])
+            values[point_dirichlet_dofs[p][c]] = at_point(c);
+        bc.displacement->check_finite(mpi_communicator);
+      }
     // The increment is not added to the iterate here: the step's first Newton
     // iteration, the tangent predictor (predictor_step()), applies it.
     TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);

@@ -120,6 +120,8 @@ namespace StabilizedLagrangian
   {
     StatisticsWriter::Supports supports;
     supports.reaction_boundaries = supported_boundaries();
+    for (const auto &bc : boundary_conditions.point_dirichlet)
+      supports.reaction_points.push_back(bc.name);
     for (const auto &plate : boundary_conditions.plates)
       supports.plates.push_back(plate.name);
     for (const auto &zone : contact_zones)
@@ -204,6 +206,18 @@ namespace StabilizedLagrangian
         for (unsigned int d = 0; d < dim; ++d)
           stats.reactions[b][d] = total[d];
       }
+    // each point Dirichlet condition: the residual without constraints at its vertex
+    stats.point_reactions.assign(point_dirichlet_dofs.size(), {{0., 0., 0.}});
+    for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (boundary_conditions.point_dirichlet[p].components[c])
+          {
+            const types::global_dof_index i     = point_dirichlet_dofs[p][c];
+            const bool                    owned = locally_owned_u.is_element(i);
+            stats.point_reactions[p][c]         = Utilities::MPI::sum(
+                owned ? internal_force(i) - external_force(i) + contact_residual(i) : 0.,
+                mpi_communicator);
+          }
   }
 
   template <int dim>

@@ -34,6 +34,8 @@ namespace StabilizedLagrangian
           held = held || bc.components[1];
         for (const auto &bc : boundary_conditions.springs)
           held = held || bc.stiffness[1] > 0.;
+        for (const auto &bc : boundary_conditions.point_dirichlet)
+          held = held || bc.components[1];
         return held ? "" : "the translation along y";
       }
     const unsigned int n_rotations = dim == 2 ? 1 : 3;
@@ -61,31 +63,42 @@ namespace StabilizedLagrangian
           held[d] = bc.stiffness[d] > 0.;
         supports.emplace_back(bc.boundary_id, held);
       }
+    const auto add_support = [&](const Point<dim> &vertex, const std::vector<bool> &held) {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (held[d])
+          {
+            const Tensor<1, dim> x = (vertex - centre) / size;
+            m                      = 0.;
+            m[d]                   = 1.;
+            // component d of the rotations ω × x (2D: about z)
+            if (dim == 2)
+              m[dim] = d == 0 ? -x[1] : x[0];
+            else
+              for (unsigned int axis = 0; axis < 3; ++axis)
+                {
+                  Tensor<1, 3> w, xx;
+                  w[axis] = 1.;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    xx[i] = x[i];
+                  m[dim + axis] = cross_product_3d(w, xx)[d];
+                }
+            for (unsigned int i = 0; i < n_modes; ++i)
+              for (unsigned int j = 0; j < n_modes; ++j)
+                gram(i, j) += m[i] * m[j];
+          }
+    };
     for (const auto &[boundary_id, held] : supports)
-      for_each_boundary_vertex(boundary_id, [&](const Point<dim> &vertex) {
-        for (unsigned int d = 0; d < dim; ++d)
-          if (held[d])
-            {
-              const Tensor<1, dim> x = (vertex - centre) / size;
-              m                      = 0.;
-              m[d]                   = 1.;
-              // component d of the rotations ω × x (2D: about z)
-              if (dim == 2)
-                m[dim] = d == 0 ? -x[1] : x[0];
-              else
-                for (unsigned int axis = 0; axis < 3; ++axis)
-                  {
-                    Tensor<1, 3> w, xx;
-                    w[axis] = 1.;
-                    for (unsigned int i = 0; i < dim; ++i)
-                      xx[i] = x[i];
-                    m[dim + axis] = cross_product_3d(w, xx)[d];
-                  }
-              for (unsigned int i = 0; i < n_modes; ++i)
-                for (unsigned int j = 0; j < n_modes; ++j)
-                  gram(i, j) += m[i] * m[j];
-            }
-      });
+      for_each_boundary_vertex(boundary_id,
+                               [&](const Point<dim> &vertex) { add_support(vertex, held); });
+    // each point condition's vertex, counted once (by rank 0: the sum below adds the ranks)
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      for (const auto &bc : boundary_conditions.point_dirichlet)
+        {
+          std::vector<bool> held(dim);
+          for (unsigned int d = 0; d < dim; ++d)
+            held[d] = bc.components[d];
+          add_support(bc.point, held);
+        }
     Utilities::MPI::sum(gram, mpi_communicator, gram);
     double trace = 0.;
     for (unsigned int i = 0; i < n_modes; ++i)
@@ -267,26 +280,33 @@ namespace StabilizedLagrangian
     const double   step      = load_stepping.end_time / load_stepping.n_steps;
     double         increment = 0.;
     Vector<double> before(dim), after(dim);
+    // (a boundary's or a point condition's)
+    const auto add_increments = [&](const auto &bc, const Point<dim> &vertex) {
+      for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
+        {
+          before = 0.;
+          if (k > 0)
+            {
+              bc.displacement->set_time(k * step);
+              bc.displacement->vector_value(vertex, before);
+            }
+          bc.displacement->set_time((k + 1) * step);
+          bc.displacement->vector_value(vertex, after);
+          double norm_squared = 0.;
+          for (unsigned int d = 0; d < dim; ++d)
+            if (bc.components[d])
+              norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
+          increment = std::max(increment, std::sqrt(norm_squared));
+        }
+    };
     for (const auto &bc : boundary_conditions.dirichlet)
-      for_each_boundary_vertex(bc.boundary_id, [&](const Point<dim> &vertex) {
-        for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
-          {
-            before = 0.;
-            if (k > 0)
-              {
-                bc.displacement->set_time(k * step);
-                bc.displacement->vector_value(vertex, before);
-              }
-            bc.displacement->set_time((k + 1) * step);
-            bc.displacement->vector_value(vertex, after);
-            double norm_squared = 0.;
-            for (unsigned int d = 0; d < dim; ++d)
-              if (bc.components[d])
-                norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
-            increment = std::max(increment, std::sqrt(norm_squared));
-          }
-      });
+      for_each_boundary_vertex(bc.boundary_id,
+                               [&](const Point<dim> &vertex) { add_increments(bc, vertex); });
+    for (const auto &bc : boundary_conditions.point_dirichlet)
+      add_increments(bc, bc.point);
     for (const auto &bc : boundary_conditions.dirichlet)
+      bc.displacement->check_finite(mpi_communicator);
+    for (const auto &bc : boundary_conditions.point_dirichlet)
       bc.displacement->check_finite(mpi_communicator);
     return Utilities::MPI::max(increment, mpi_communicator);
   }

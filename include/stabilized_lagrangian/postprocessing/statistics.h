@@ -56,6 +56,8 @@ namespace StabilizedLagrangian
      * the order of StatisticsWriter's reaction boundaries
      */
     std::vector<std::array<double, 3>> reactions;
+    /** the force each point Dirichlet condition exerts on the body (N; N/mm in 2D) */
+    std::vector<std::array<double, 3>> point_reactions;
     /** each rigid plate's translation U (mm), in the order of StatisticsWriter's plates */
     std::vector<std::array<double, 3>> plate_displacements;
     /** the force F(t) on each rigid plate (N; N/mm in 2D) */
@@ -108,6 +110,8 @@ namespace StabilizedLagrangian
     {
       /** the Dirichlet and spring boundaries: reaction_boundary_<id>_<axis>_N */
       std::vector<dealii::types::boundary_id> reaction_boundaries;
+      /** the point Dirichlet conditions' names: reaction_point_<name>_<axis>_N */
+      std::vector<std::string> reaction_points;
       /** the rigid plates' names: plate_<name>_{displacement_<axis>_mm,force_<axis>_N} */
       std::vector<std::string> plates;
       /** the contact zones' names: zone_<name>_{normal,tangential}_force_N */

@@ -1655,12 +1655,18 @@ namespace StabilizedLagrangian
     std::vector<std::array<types::global_dof_index, dim>> plate_dofs;
     /** The DoFs of each point load's vertex, per component */
     std::vector<std::array<types::global_dof_index, dim>> point_load_dofs;
+    /** The DoFs of each point Dirichlet condition's vertex, per component */
+    std::vector<std::array<types::global_dof_index, dim>> point_dirichlet_dofs;
     /**
-     * Each point load's vertex: the vertex of the mesh nearest to its Point,
-     * refused when it is not at the point (to 1e-6 of the body's size) or hangs.
+     * The vertices of the point loads and point Dirichlet conditions: the
+     * vertex of the mesh nearest to each Point, refused when it is not at the
+     * point (to 1e-6 of the body's size) or hangs.
      */
     void
-    find_point_load_dofs();
+    find_point_dofs();
+    /** The DoFs of the vertex at @p point, per component (@p section names it in errors). */
+    std::array<types::global_dof_index, dim>
+    vertex_dofs(const Point<dim> &point, const std::string &section) const;
     /**
      * owned, multiplier rows: the weight that turns the row's residual into a
      * length, ∫|ψ_j| on the λ_n rows and ∫|ψ_j| (χ_f s + (1 − χ_f) r_t) on the Λ rows
