@@ -51,6 +51,8 @@ FIELDS = {"contact_pressure": ("contact pressure", "MPa", "scalar", "no contact"
           "tangential_traction": ("tangential traction (magnitude)", "MPa", "magnitude", "no friction force"),
           "gap": ("gap", "mm", "scalar", None),
           "slip_increment": ("slip increment (magnitude)", "mm", "magnitude", "no slip"),
+          "cumulative_slip": ("cumulative slip (magnitude)", "mm", "magnitude", "no slip"),
+          "slip_path": ("slip path", "mm", "scalar", "no slip"),
           "contact_status": ("contact status", None, "status", None)}
 
 

@@ -11,7 +11,8 @@ which can move a loop's stop by an iteration where its criterion is borderline
 (seen once in CI on the triangles): there the steps and times must be the same
 and the forces equal to the nested loops' tolerance (1e-4 of each column's
 scale), see close_tables. The resumed run's .pvd must
-list the same, complete, files. Scenes: the J2 patin (material history) on 1
+list the same, complete, files, and on 1 rank its last profile (with the
+slip accumulated over the steps) equal the uninterrupted one's. Scenes: the J2 patin (material history) on 1
 rank and on 2 ranks, on quadrilaterals and on triangles (2 ranks), and a Hertz cylinder with two cycles of adaptive
 refinement (the mesh is rebuilt from the checkpoint's refinements), and the
 patin on a deformable block with `Complementarity = weighted` (the contact
@@ -184,6 +185,13 @@ for name, (text, ranks, note) in scenes.items():
             a, b = rows(f"{full}/output/{table}"), rows(f"{interrupted}/output/{table}")
             check(equal_tables(a, b),
                   f"{name}: {table} of the resumed run equals the uninterrupted one ({len(a) - 1} rows)")
+        if not note:
+            # the last profile: its accumulated slip is carried by the checkpoint
+            last = sorted(f for f in os.listdir(f"{full}/output") if f.startswith("profile-"))[-1]
+            a, b = rows(f"{full}/output/{last}"), rows(f"{interrupted}/output/{last}")
+            check("slip_path_mm" in a[0] and equal_tables(a, b),
+                  f"{name}: {last} of the resumed run (its cumulative slip and slip path) equals "
+                  f"the uninterrupted one ({len(a) - 1} nodes)")
     else:
         a, b = rows(f"{full}/output/statistics.csv"), rows(f"{interrupted}/output/statistics.csv")
         same = equal_tables(a, b)

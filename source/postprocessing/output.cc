@@ -250,6 +250,15 @@ namespace StabilizedLagrangian
       for (unsigned int d = 0; d < dim; ++d)
         values.push_back(v[d]);
     };
+    // the slip accumulated at the point's node, this step's slip added where it
+    // is in contact (the slip_increment field's slip)
+    const auto accumulated = [this](const Sample &p) -> const AccumulatedSlip & {
+      const Tensor<1, dim> slip = p.state.pairing.from_tangential_components(
+          p.state.pairing.tangential_components(p.kinematics.step_increment));
+      return accumulate_slip(Point<dim>(p.kinematics.position - p.kinematics.displacement),
+                             slip,
+                             p.response.status() != Contact::Status::open);
+    };
     return {
         {"contact_pressure",
          "contact_pressure",
@@ -271,9 +280,46 @@ namespace StabilizedLagrangian
          [append](const Sample &p, Values &values) {
            append(p, p.state.pairing.tangential_components(p.kinematics.step_increment), values);
          }},
+        {"cumulative_slip",
+         "cumulative_slip",
+         "mm",
+         dim,
+         [accumulated](const Sample &p, Values &values) {
+           const auto &slip = accumulated(p);
+           for (unsigned int d = 0; d < dim; ++d)
+             values.push_back(slip.total[d]);
+         }},
+        {"slip_path",
+         "slip_path",
+         "mm",
+         1,
+         [accumulated](const Sample &p, Values &values) { values.push_back(accumulated(p).path); }},
         {"contact_status", "status", "", 1, [](const Sample &p, Values &values) {
            values.push_back(static_cast<double>(p.response.status()));
          }}};
+  }
+
+  template <int dim>
+  typename ContactProblem<dim>::AccumulatedSlip &
+  ContactProblem<dim>::accumulate_slip(const Point<dim>     &X,
+                                       const Tensor<1, dim> &increment,
+                                       const bool            in_contact)
+  {
+    // a node is evaluated once per face that holds it: each evaluation of a
+    // step sets the same total from the value before the step
+    std::array<std::int64_t, dim> key;
+    for (unsigned int d = 0; d < dim; ++d)
+      key[d] = std::llround(X[d] * 1e9);
+    AccumulatedSlip &slip = accumulated_slip[key];
+    if (slip.step != output_step)
+      {
+        slip.before      = slip.total;
+        slip.path_before = slip.path;
+        slip.step        = output_step;
+      }
+    slip.total = slip.before + (in_contact ? increment : Tensor<1, dim>());
+    slip.path  = slip.path_before + (in_contact ? increment.norm() : 0.);
+    return slip;
   }
 
   template <int dim>
@@ -366,7 +412,8 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::output_results(const unsigned int step, const double t)
   {
-    TimerOutput::Scope              scope(timer, "output");
+    TimerOutput::Scope scope(timer, "output");
+    output_step                                  = step;
     const std::vector<ContactField> fields       = contact_fields();
     unsigned int                    n_components = 0;
     for (const auto &field : fields)
@@ -695,6 +742,10 @@ namespace StabilizedLagrangian
   ContactProblem<2>::write_obstacle(unsigned int, double) const;
   template void
   ContactProblem<3>::write_obstacle(unsigned int, double) const;
+  template ContactProblem<2>::AccumulatedSlip &
+  ContactProblem<2>::accumulate_slip(const Point<2> &, const Tensor<1, 2> &, bool);
+  template ContactProblem<3>::AccumulatedSlip &
+  ContactProblem<3>::accumulate_slip(const Point<3> &, const Tensor<1, 3> &, bool);
   template void
   ContactProblem<2>::output_results(unsigned int, double);
   template void

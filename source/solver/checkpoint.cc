@@ -249,6 +249,19 @@ namespace StabilizedLagrangian
         out.put(t);
         out.put(file);
       }
+    // the accumulated slip of the nodes of Γc: key, step, then the sums
+    std::vector<double> slips;
+    for (const auto &[key, slip] : accumulated_slip)
+      {
+        slips.insert(slips.end(), key.begin(), key.end());
+        slips.push_back(slip.step);
+        for (const Tensor<1, dim> *sum : {&slip.before, &slip.total})
+          for (unsigned int d = 0; d < dim; ++d)
+            slips.push_back((*sum)[d]);
+        slips.push_back(slip.path_before);
+        slips.push_back(slip.path);
+      }
+    out.put(slips);
     out.put(std::string(magic));
     const std::string bytes = out.str();
     SafeFiles::write_atomically(next + "/rank-" + std::to_string(rank) + ".bin", bytes);
@@ -461,6 +474,27 @@ namespace StabilizedLagrangian
       {
         in.get(t);
         in.get(record);
+      }
+    std::vector<double> slips;
+    in.get(slips);
+    accumulated_slip.clear();
+    const unsigned int entry = 3 * dim + 3;
+    AssertThrow(slips.size() % entry == 0,
+                ExcMessage("the checkpoint's accumulated slip is damaged"));
+    for (unsigned int i = 0; i < slips.size(); i += entry)
+      {
+        std::array<std::int64_t, dim> key;
+        for (unsigned int d = 0; d < dim; ++d)
+          key[d] = static_cast<std::int64_t>(slips[i + d]);
+        AccumulatedSlip &slip = accumulated_slip[key];
+        slip.step             = static_cast<unsigned int>(slips[i + dim]);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            slip.before[d] = slips[i + dim + 1 + d];
+            slip.total[d]  = slips[i + 2 * dim + 1 + d];
+          }
+        slip.path_before = slips[i + 3 * dim + 1];
+        slip.path        = slips[i + 3 * dim + 2];
       }
     std::string trailer;
     in.get(trailer);

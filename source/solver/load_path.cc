@@ -262,6 +262,7 @@ namespace StabilizedLagrangian
     statistics.open(output_parameters.directory, dim, root, statistics_supports());
     pvd_records.clear();
     active_set.clear();
+    accumulated_slip.clear();
     steps.restart();
     path_start_work = work;
   }

@@ -1477,8 +1477,31 @@ namespace StabilizedLagrangian
      */
     struct ContactField;
     /** The contact output fields, in the order of the VTU's and the profile's. */
-    static std::vector<ContactField>
+    std::vector<ContactField>
     contact_fields();
+    /**
+     * The slip accumulated at a node of Γc over the converged steps in which
+     * it was in contact: the vector sum of the steps' slip increments and the
+     * sum of their lengths (the slip path), up to the end of step `step`.
+     */
+    struct AccumulatedSlip
+    {
+      unsigned int   step = 0; ///< the last step added
+      Tensor<1, dim> before;   ///< the vector sum before that step
+      double         path_before = 0.;
+      Tensor<1, dim> total; ///< the vector sum with it
+      double         path = 0.;
+    };
+    /**
+     * The accumulated slip of the nodes of Γc, by reference position (in
+     * 1e-9 mm); cleared when a load path starts, kept by the checkpoint.
+     */
+    std::map<std::array<std::int64_t, dim>, AccumulatedSlip> accumulated_slip;
+    /** the load step whose output is being evaluated (the accumulated slip's) */
+    unsigned int output_step = 0;
+    /** The accumulated slip of the node at reference position @p X after step output_step. */
+    AccumulatedSlip &
+    accumulate_slip(const Point<dim> &X, const Tensor<1, dim> &increment, bool in_contact);
     /**
      * The values of @p fields at a point of Γc, from the converged iterate
      * evaluated afresh; with weighted complementarity, the tractions and status
