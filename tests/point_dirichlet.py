@@ -5,7 +5,9 @@ prm/patin_elastic.prm (100 x 50 mm) resting on the rigid plane, with no boundary
 
 - frictionless, a pressure p and a shear q on the top face, one node (the top-left corner) held
   in x: the node takes the whole horizontal load, reaction_point_corner_x_N = -q L, and the
-  contact the vertical one, F_n = p L, to 1e-8 at every step;
+  contact the vertical one, F_n = p L, to 1e-8 at every step; without the node the
+  frictionless contact leaves the body free to slide, and the run warns, naming the
+  translation;
 - with friction mu = 0.3, the top middle node pushed down by d(t): the node's reaction balances
   the contact force, -reaction_point_push_y_N = F_n, and the friction force vanishes with
   nothing pulling sideways, to 1e-8 of F_n at every step; the same on 2 MPI ranks;
@@ -47,6 +49,11 @@ worst = max(max(abs(row["reaction_point_corner_x_N"] + q * L * row["time"]),
 check(len(rows) == 10 and worst <= 1e-8 * p * L,
       f"corner held in x: reaction -q L and F_n = p L at all {len(rows)} steps "
       f"(largest difference {worst:.1e} N/mm)")
+
+code, log = sltest.run(executable, scene(HELD_CORNER.replace("set Point = -50, 50", "set Point ="), 0)
+                       + sltest.QUIET_OUTPUT, os.path.join(workdir, "free"), expect_success=False)
+check("WARNING: the body is not held" in log and "translation along x" in log,
+      "without the node, frictionless: the run warns that the translation along x is free")
 
 PUSHED = """  subsection Dirichlet push
     set Point = 0, 50

@@ -88,6 +88,7 @@ namespace StabilizedLagrangian
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
     loops.set_can_change(Loop::geometry, !(partner->is_flat() && !finite_strain()));
     loops.set_can_change(Loop::friction, any_friction() && any_pressure_dependent_threshold());
+    check_body_is_held();
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
     warn_if_dirichlet_not_ramped();

@@ -17,7 +17,7 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   std::string
-  ContactProblem<dim>::rigid_motions_left_free() const
+  ContactProblem<dim>::rigid_motions_left_free(const bool with_contact) const
   {
     // The rigid motions (dim translations, then the rotations about the
     // body's centre, scaled by its size) restricted to the prescribed
@@ -36,6 +36,12 @@ namespace StabilizedLagrangian
           held = held || bc.stiffness[1] > 0.;
         for (const auto &bc : boundary_conditions.point_dirichlet)
           held = held || bc.components[1];
+        if (with_contact)
+          for (const auto id : contact_parameters.boundary_ids)
+            for_each_boundary_vertex(id, [&](const Point<dim> &vertex) {
+              held = held || any_friction() || std::abs(partner->project(vertex).normal[1]) > 1e-6;
+            });
+        held = Utilities::MPI::logical_or(held, mpi_communicator);
         return held ? "" : "the translation along y";
       }
     const unsigned int n_rotations = dim == 2 ? 1 : 3;
@@ -63,28 +69,38 @@ namespace StabilizedLagrangian
           held[d] = bc.stiffness[d] > 0.;
         supports.emplace_back(bc.boundary_id, held);
       }
+    // a support holding the direction n at a vertex: m_i = n · (mode i there)
+    const auto add_direction = [&](const Point<dim> &vertex, const Tensor<1, dim> &n) {
+      const Tensor<1, dim> x = (vertex - centre) / size;
+      m                      = 0.;
+      for (unsigned int d = 0; d < dim; ++d)
+        m[d] = n[d];
+      // the rotations ω × x (2D: about z)
+      if (dim == 2)
+        m[dim] = -n[0] * x[1] + n[1] * x[0];
+      else
+        for (unsigned int axis = 0; axis < 3; ++axis)
+          {
+            Tensor<1, 3> w, xx, nn;
+            w[axis] = 1.;
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                xx[i] = x[i];
+                nn[i] = n[i];
+              }
+            m[dim + axis] = cross_product_3d(w, xx) * nn;
+          }
+      for (unsigned int i = 0; i < n_modes; ++i)
+        for (unsigned int j = 0; j < n_modes; ++j)
+          gram(i, j) += m[i] * m[j];
+    };
     const auto add_support = [&](const Point<dim> &vertex, const std::vector<bool> &held) {
       for (unsigned int d = 0; d < dim; ++d)
         if (held[d])
           {
-            const Tensor<1, dim> x = (vertex - centre) / size;
-            m                      = 0.;
-            m[d]                   = 1.;
-            // component d of the rotations ω × x (2D: about z)
-            if (dim == 2)
-              m[dim] = d == 0 ? -x[1] : x[0];
-            else
-              for (unsigned int axis = 0; axis < 3; ++axis)
-                {
-                  Tensor<1, 3> w, xx;
-                  w[axis] = 1.;
-                  for (unsigned int i = 0; i < dim; ++i)
-                    xx[i] = x[i];
-                  m[dim + axis] = cross_product_3d(w, xx)[d];
-                }
-            for (unsigned int i = 0; i < n_modes; ++i)
-              for (unsigned int j = 0; j < n_modes; ++j)
-                gram(i, j) += m[i] * m[j];
+            Tensor<1, dim> e;
+            e[d] = 1.;
+            add_direction(vertex, e);
           }
     };
     for (const auto &[boundary_id, held] : supports)
@@ -99,6 +115,15 @@ namespace StabilizedLagrangian
             held[d] = bc.components[d];
           add_support(bc.point, held);
         }
+    // the contact boundary: along the obstacle's normal, or wholly with friction
+    if (with_contact)
+      for (const auto id : contact_parameters.boundary_ids)
+        for_each_boundary_vertex(id, [&](const Point<dim> &vertex) {
+          if (any_friction())
+            add_support(vertex, std::vector<bool>(dim, true));
+          else
+            add_direction(vertex, partner->project(vertex).normal);
+        });
     Utilities::MPI::sum(gram, mpi_communicator, gram);
     double trace = 0.;
     for (unsigned int i = 0; i < n_modes; ++i)
@@ -128,6 +153,26 @@ namespace StabilizedLagrangian
         free += (free.empty() ? "" : ", ") + motion.str();
       }
     return free;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::check_body_is_held() const
+  {
+    if (!partner->is_rigid() || any_friction())
+      return;
+    const std::string free = rigid_motions_left_free(true);
+    // (a warning: without a load along that motion the singular system has
+    // solutions, which the direct solver finds)
+    if (!free.empty())
+      pcout << "WARNING: the body is not held: the contact is frictionless (Contact/Friction "
+               "law), so it holds the body only along the obstacle's normal, and with the "
+               "Dirichlet conditions and springs it leaves "
+            << free
+            << " free; the Newton system is singular, and a load along that motion has no "
+               "equilibrium. Hold that motion with a Dirichlet condition (Boundary "
+               "conditions/Dirichlet <name>, on a boundary or at one node with Point) or a "
+               "spring, or give the contact friction.\n";
   }
 
   template <int dim>
@@ -342,7 +387,8 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                        \
-  template std::string  ContactProblem<dim>::rigid_motions_left_free() const;      \
+  template std::string  ContactProblem<dim>::rigid_motions_left_free(bool) const;  \
+  template void         ContactProblem<dim>::check_body_is_held() const;           \
   template unsigned int ContactProblem<dim>::points_in_contact() const;            \
   template void         ContactProblem<dim>::close_nearest_points();               \
   template void         ContactProblem<dim>::warn_if_pair_locks() const;           \

@@ -999,9 +999,18 @@ namespace StabilizedLagrangian
     /**
      * Collective: the rigid motions of the body that no Dirichlet condition
      * holds, in words ("the translation along y"); empty if none (or two bodies).
+     * With @p with_contact the contact boundary holds too: along the
+     * obstacle's normal at each of its vertices where the contact is
+     * frictionless, in every direction where it has friction.
      */
     std::string
-    rigid_motions_left_free() const;
+    rigid_motions_left_free(bool with_contact = false) const;
+    /**
+     * Warn of a body that even its contact cannot hold (a frictionless contact
+     * holds only the normal direction): its Newton system is singular.
+     */
+    void
+    check_body_is_held() const;
     /** Collective: the number of contact points whose status χ is contact. */
     unsigned int
     points_in_contact() const;
