@@ -99,15 +99,17 @@ namespace StabilizedLagrangian
       const bool                       hoop;
     };
 
-    /** The faces of some boundaries (the contact surfaces) of the locally owned cells. */
+    /** The boundary faces of the locally owned cells that a predicate keeps (the contact faces). */
     template <int dim> class BoundaryFacesOut : public DataOutFaces<dim>
     {
     public:
       using FaceDescriptor = typename DataOutFaces<dim>::FaceDescriptor;
+      using Keep =
+          std::function<bool(const typename Triangulation<dim>::cell_iterator &, unsigned int)>;
 
-      explicit BoundaryFacesOut(const std::set<types::boundary_id> &ids)
+      explicit BoundaryFacesOut(Keep keep)
           : DataOutFaces<dim>(true)
-          , ids(ids)
+          , keep(std::move(keep))
       {
       }
 
@@ -124,17 +126,16 @@ namespace StabilizedLagrangian
       }
 
     private:
-      /** @p face or the first face after it on one of the boundaries */
+      /** @p face or the first face after it that keep() accepts */
       FaceDescriptor
       first_kept(FaceDescriptor face)
       {
-        while (face.first.state() == IteratorState::valid &&
-               ids.count(face.first->face(face.second)->boundary_id()) == 0)
+        while (face.first.state() == IteratorState::valid && !keep(face.first, face.second))
           face = DataOutFaces<dim>::next_face(face);
         return face;
       }
 
-      const std::set<types::boundary_id> ids;
+      const Keep keep;
     };
 
     /**
@@ -525,23 +526,21 @@ namespace StabilizedLagrangian
             directory, step, Utilities::MPI::this_mpi_process(mpi_communicator) == 0);
       }
     // the contact surface itself: the fields at its nodes, not smeared into cells
-    BoundaryFacesOut<dim> surface_out(contact_parameters.boundary_ids);
+    BoundaryFacesOut<dim> surface_out(
+        [this](const typename Triangulation<dim>::cell_iterator &cell, const unsigned int f) {
+          return is_contact_face(cell, f);
+        });
     surface_out.add_data_vector(
         dof_handler_u, u, std::vector<std::string>(dim, "displacement_mm"), vector_kind);
     surface_out.add_data_vector(field_dofs, vertex_ghosted, names, kinds);
     surface_out.build_patches(fe_pair->displacement_degree());
     // a piece per rank that holds contact faces (an empty piece has no Points
     // element, which VTK's readers report as an error), listed by rank 0
-    unsigned int local_faces = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const auto &face : cell->face_iterators())
-          local_faces +=
-              face->at_boundary() && contact_parameters.boundary_ids.count(face->boundary_id()) > 0;
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const std::string  stem    = "contact_surface_" + Utilities::int_to_string(step, 5);
-    const auto         faces   = Utilities::MPI::all_gather(mpi_communicator, local_faces);
-    bool               written = true;
+    const unsigned int local_faces = contact_faces.size();
+    const unsigned int rank        = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const std::string  stem        = "contact_surface_" + Utilities::int_to_string(step, 5);
+    const auto         faces       = Utilities::MPI::all_gather(mpi_communicator, local_faces);
+    bool               written     = true;
     if (local_faces > 0)
       {
         std::ofstream piece(directory + "/" + stem + "." + std::to_string(rank) + ".vtu");

@@ -180,7 +180,8 @@ namespace StabilizedLagrangian
                   inadmissible_state = where.str();
                   return;
                 }
-              const double JxW = fe_values.JxW(q) * (axisymmetric ? 2. * numbers::PI * radius : 1.);
+              const double JxW = fe_values.JxW(q) *
+                                 (axisymmetric ? radial_weight(fe_values.quadrature_point(q)) : 1.);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
               if (axisymmetric)
