@@ -35,6 +35,7 @@ import sys
 import matplotlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 from hertz_errors import hertz_errors, hertz_scene  # noqa: E402
 
@@ -56,8 +57,7 @@ R = 100.0
 
 
 def read_csv(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    return run_output.read_csv(path)
 
 
 def run(dim, pair, local, cycles=0, delta=None, null_pivots=False, profile_name=None, criterion="active set"):

@@ -56,6 +56,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_output  # noqa: E402
 from hertz_errors import hertz_errors  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -98,8 +99,7 @@ workdir = os.path.abspath(args.workdir)
 
 
 def read_csv(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    return run_output.read_csv(path)
 
 
 def mesh_file(factor):

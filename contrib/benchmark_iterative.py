@@ -23,6 +23,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -68,8 +69,7 @@ def summary(key):
 
 def last_force(key):
     path = os.path.join(case_dirs[key], "output", "statistics.csv")
-    with open(path) as f:
-        return float(list(csv.DictReader(f))[-1]["normal_force_N"])
+    return run_output.read_csv(path)[-1]["normal_force_N"]
 
 
 def slope(points):

@@ -19,13 +19,13 @@ patch tests the largest |p - 100 MPa| / 100 MPa at a node. A table in two_bodies
 comments, the text after them kept) in the --output folder (default: the work directory; doc/
 with --doc)."""
 import argparse
-import csv
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -81,8 +81,7 @@ rows = robustness_map.run_cases(args.executable, cases, jobs=args.jobs, timeout=
 def read(path):
     if not os.path.exists(path):
         return []
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    return run_output.read_csv(path)
 
 
 def profiles(key):

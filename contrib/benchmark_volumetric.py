@@ -20,6 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -66,7 +67,7 @@ def measure(key):
     if not os.path.exists(path):
         return None
     with open(path) as f:
-        steps = list(csv.DictReader(f))
+        steps = [run_output.force_aliases(row) for row in csv.DictReader(f)]
     if not steps:
         return None
     last = steps[-1]

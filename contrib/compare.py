@@ -327,7 +327,8 @@ def read_table(path):
         except ValueError:
             return text
     with open(path, newline="") as f:
-        return [{k: value(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        return [run_output.force_aliases({k: value(v) for k, v in row.items()})
+                for row in csv.DictReader(f)]
 
 
 def run_results(case_dir):

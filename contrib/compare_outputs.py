@@ -65,7 +65,7 @@ def read(path):
 
 
 def unit(column):
-    for suffix in ("_mm", "_MPa", "_N"):
+    for suffix in ("_mm", "_MPa", "_N", "_N_per_mm"):
         if column.endswith(suffix):
             return suffix
     return column

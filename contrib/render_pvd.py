@@ -633,8 +633,11 @@ for step in steps:
     loaded[step] = (data, marked, values, size)
 colour_range = field_range([v[m] if m is not None and m.any() else v for _, m, v, _ in loaded.values()])
 
+obstacle_at_rest = obstacle
 for step in steps:
     data, marked, values, size = loaded[step]
+    # a moving obstacle where the run wrote it at this step
+    obstacle = run_output.moved_obstacle(obstacle_at_rest, args.output_dir, step)
     displacement = point_array(data, array_name("displacement"))
     max_u = float(np.sqrt((displacement ** 2).sum(1)).max())
     scale = scale_factor if args.scale != "auto" else (0.1 * size / max_u if max_u > 0 else 1.0)

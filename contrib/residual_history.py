@@ -33,7 +33,7 @@ CRITERIA = {
     "scaled": "set Residual = scaled\n    set Tolerance = 1e-8",
     "absolute": "set Residual = absolute\n    set Tolerance = 1e-6",
 }
-ITERATE = re.compile(r"\s+Newton (\d+): residual (\S+) N; scaled: force (\S+), gap (\S+), slip (\S+)")
+ITERATE = re.compile(r"\s+Newton (\d+): residual (\S+) N(?:/mm)?; scaled: force (\S+), gap (\S+), slip (\S+)")
 STEP = re.compile(r"step\s+(\d+)\s+t =\s+(\S+)")
 BEGIN, END = "<!-- begin residual_history -->", "<!-- end residual_history -->"
 

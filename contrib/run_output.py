@@ -84,6 +84,38 @@ def rigid_obstacle(parameters):
     raise OutputError(f"Obstacle/Model = {model}: not an obstacle this tool knows how to draw (plane, ball)")
 
 
+def moved_obstacle(obstacle, output_dir, step):
+    """The obstacle of rigid_obstacle() where the run's obstacle_NNNNN.vtu puts it at `step`
+    (an obstacle moved by Obstacle/Motion): a ball's centre is the mean of its surface's
+    vertices (the refined sphere's are symmetric about it), a plane passes through its written
+    segment (2D) or rectangle (3D), with the normal on the side of the one at rest. The
+    obstacle at rest when the file is missing (a run without vtu output)."""
+    path = os.path.join(output_dir, f"obstacle_{step:05d}.vtu")
+    if obstacle is None or not os.path.exists(path):
+        return obstacle
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    data = reader.GetOutput().GetPoints()
+    points = [data.GetPoint(i) for i in range(data.GetNumberOfPoints())]
+    if not points:
+        return obstacle
+    if obstacle["model"] == "ball":
+        return dict(obstacle, center=[sum(p[i] for p in points) / len(points) for i in range(3)])
+    a, b = points[0], points[1]
+    t = [b[i] - a[i] for i in range(3)]
+    if len(points) == 2:
+        normal = [-t[1], t[0], 0.0]
+    else:
+        c = points[2]
+        s = [c[i] - a[i] for i in range(3)]
+        normal = [t[1] * s[2] - t[2] * s[1], t[2] * s[0] - t[0] * s[2], t[0] * s[1] - t[1] * s[0]]
+    length = math.sqrt(sum(n * n for n in normal))
+    sign = 1.0 if sum(n * m for n, m in zip(normal, obstacle["normal"])) >= 0 else -1.0
+    return dict(obstacle, point=list(a), normal=[sign * n / length for n in normal])
+
+
 def friction_law(parameters):
     """('Coulomb', mu), ('Tresca', threshold in MPa) or None (frictionless or unknown)."""
     model = parameters.get("Contact/Friction law/Model")
@@ -123,10 +155,20 @@ def profile_steps(output_dir):
     return dict(sorted(found.items()))
 
 
+def force_aliases(row):
+    """A row of a run's CSV file with each force column of a plane strain run, named per unit
+    thickness (`..._N_per_mm`), also under its 3D name (`..._N`), so that one reader serves both
+    dimensions."""
+    for key in list(row):
+        if key.endswith("_N_per_mm"):
+            row.setdefault(key[:-len("_per_mm")], row[key])
+    return row
+
+
 def read_csv(path):
-    """The rows of a CSV file of numbers, as dicts of floats."""
+    """The rows of a CSV file of numbers, as dicts of floats (force_aliases() added)."""
     with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        return [force_aliases({k: float(v) for k, v in row.items()}) for row in csv.DictReader(f)]
 
 
 def step_times(output_dir):

@@ -249,18 +249,24 @@ namespace StabilizedLagrangian
     namespace
     {
       /**
-       * The entries Functions::ParsedFunction<dim> reads (a vector of dim
-       * components of x, y(, z) and t), documented in a few lines.
+       * The entries Functions::ParsedFunction<dim> reads (a vector of
+       * @p n_components components of x, y(, z) and t, dim by default),
+       * documented in a few lines.
        */
       template <int dim>
       void
-      declare_function(ParameterHandler &prm, const std::string &unit)
+      declare_function(ParameterHandler  &prm,
+                       const std::string &unit,
+                       const unsigned int n_components = dim)
       {
         const std::string coordinates = dim == 2 ? "x,y,t" : "x,y,z,t";
+        std::string       zeros       = "0";
+        for (unsigned int c = 1; c < n_components; ++c)
+          zeros += "; 0";
         prm.declare_entry("Function expression",
-                          dim == 2 ? "0; 0" : "0; 0; 0",
+                          zeros,
                           Patterns::Anything(),
-                          std::to_string(dim) + " components (" + unit +
+                          std::to_string(n_components) + " components (" + unit +
                               ") separated by ';', of the coordinates and the time (muparser: "
                               "+ - * / ^, sin, exp, sqrt, min, max, if(condition, a, b), ...).");
         prm.declare_entry("Function constants",
@@ -362,12 +368,24 @@ namespace StabilizedLagrangian
           {
             prm.enter_subsection("Rigid plate " + name);
             boundary_entry("tied to a rigid plate: in the plate's components it moves as one "
-                           "translation (the plate does not rotate)");
+                           "translation, and turns with the plate if Rotation = free");
             prm.declare_entry("Components",
                               dim == 2 ? "y" : "z",
                               Patterns::MultipleSelection(component_names<dim>()),
                               "The components the plate ties; the others stay free (or take "
                               "another condition).");
+            prm.declare_entry("Rotation",
+                              "guided",
+                              Patterns::Selection("guided|free"),
+                              "guided: the plate only translates; free: it also turns (a "
+                              "small rotation theta about the reference point, u = U + theta x "
+                              "(X - X_0)), carrying the force at the reference point and no "
+                              "moment; needs every component tied.");
+            prm.declare_entry("Reference point",
+                              "",
+                              Patterns::Anything(),
+                              "X_0 (mm): where the force acts and the plate turns about; "
+                              "empty: the centroid of the boundary's nodes.");
             prm.enter_subsection("Force");
             declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
             prm.leave_subsection();
@@ -391,8 +409,9 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    BoundaryFunction<dim>::BoundaryFunction(const std::string &entry)
-        : Functions::ParsedFunction<dim>(dim)
+    BoundaryFunction<dim>::BoundaryFunction(const std::string &entry,
+                                            const unsigned int n_components)
+        : Functions::ParsedFunction<dim>(n_components)
         , entry(entry)
     {
     }
@@ -446,10 +465,13 @@ namespace StabilizedLagrangian
 
     template <int dim>
     std::shared_ptr<BoundaryFunction<dim>>
-    parse_function(ParameterHandler &prm, const std::string &parent, const std::string &name)
+    parse_function(ParameterHandler  &prm,
+                   const std::string &parent,
+                   const std::string &name,
+                   const unsigned int n_components)
     {
       const std::string entry    = parent + "/" + name;
-      auto              function = std::make_shared<BoundaryFunction<dim>>(entry);
+      auto              function = std::make_shared<BoundaryFunction<dim>>(entry, n_components);
       prm.enter_subsection(name);
       const std::vector<std::string> variables =
           Utilities::split_string_list(prm.get("Variable names"));
@@ -467,7 +489,7 @@ namespace StabilizedLagrangian
                              "); give the constant another name.");
         }
       const std::string cannot_parse =
-          entry + ": the function could not be parsed (" + std::to_string(dim) +
+          entry + ": the function could not be parsed (" + std::to_string(n_components) +
           " components separated by ';', variables x, y" + (dim == 3 ? ", z" : "") +
           ", t, constants 'name=value, ...').";
       try
@@ -476,7 +498,7 @@ namespace StabilizedLagrangian
           // the expression is compiled at its first evaluation: an undefined
           // name shows up here, before anything is written, not mid-run. The
           // probe point need not be on the boundary, so its value is not checked.
-          Vector<double> probe(dim);
+          Vector<double> probe(n_components);
           function->Functions::ParsedFunction<dim>::vector_value(Point<dim>(), probe);
         }
       catch (const ExceptionBase &e)
@@ -523,8 +545,12 @@ namespace StabilizedLagrangian
         return std::make_pair(id.value_or(0), id ? "" : value);
       };
       // the vertex a `Point` entry of the current subsection names, if any
-      const auto vertex = [&prm](const std::string &section) -> std::optional<Point<dim>> {
-        const std::string text = Utilities::trim(prm.get("Point"));
+      // a point entry (`Point` by default), empty for none
+      const auto vertex = [&prm](const std::string &section,
+                                 const std::string &entry = "Point",
+                                 const std::string &what =
+                                     "a vertex of the mesh") -> std::optional<Point<dim>> {
+        const std::string text = Utilities::trim(prm.get(entry));
         if (text.empty())
           return std::nullopt;
         Point<dim> point;
@@ -538,8 +564,8 @@ namespace StabilizedLagrangian
           }
         catch (...)
           {
-            throw InputError(section + "/Point = '" + text + "': " + std::to_string(dim) +
-                             " comma-separated coordinates (mm) of a vertex of the mesh.");
+            throw InputError(section + "/" + entry + " = '" + text + "': " + std::to_string(dim) +
+                             " comma-separated coordinates (mm) of " + what + ".");
           }
         return point;
       };
@@ -622,12 +648,21 @@ namespace StabilizedLagrangian
                                  "/Components: empty, so the plate ties nothing; name the "
                                  "components it carries (x, y" +
                                  std::string(dim == 3 ? ", z" : "") + ").");
-              plates.push_back(RigidPlateCondition<dim>{where->first,
-                                                        where->second,
-                                                        ComponentMask(mask),
-                                                        parse_function(section, "Force"),
-                                                        name,
-                                                        "Boundary conditions/" + section});
+              const bool free_rotation = prm.get("Rotation") == "free";
+              if (free_rotation && std::count(mask.begin(), mask.end(), true) != dim)
+                throw InputError("Boundary conditions/" + section +
+                                 "/Rotation = free: a plate free to turn ties every component; "
+                                 "set Components = " +
+                                 std::string(dim == 2 ? "x, y" : "x, y, z") + ".");
+              plates.push_back(RigidPlateCondition<dim>{
+                  where->first,
+                  where->second,
+                  ComponentMask(mask),
+                  parse_function(section, "Force"),
+                  free_rotation,
+                  vertex("Boundary conditions/" + section, "Reference point", "a point"),
+                  name,
+                  "Boundary conditions/" + section});
             }
           prm.leave_subsection();
         }
@@ -1065,7 +1100,22 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Obstacle");
       prm.enter_subsection("Motion");
       declare_function<dim>(prm,
-                            "mm: the obstacle's translation at time t; 0: fixed; only t is used");
+                            "mm: the obstacle's translation d at time t; 0: fixed; only t is used");
+      prm.declare_entry("Rotation centre",
+                        dim == 2 ? "0, 0" : "0, 0, 0",
+                        Patterns::List(Patterns::Double(), dim, dim),
+                        "The point c the obstacle turns about (mm), where it is at rest; it moves "
+                        "with the translation d.");
+      prm.enter_subsection("Rotation");
+      declare_function<dim>(prm,
+                            dim == 2 ? "rad: the angle the obstacle has turned by about its "
+                                       "rotation centre at time t, counter-clockwise; only t "
+                                       "is used"
+                                     : "rad: the rotation vector (axis times angle) the "
+                                       "obstacle has turned by about its rotation centre at "
+                                       "time t; only t is used",
+                            dim == 2 ? 1 : 3);
+      prm.leave_subsection();
       prm.leave_subsection();
       prm.leave_subsection();
       Materials::declare_parameters<dim>(prm);
@@ -1290,9 +1340,9 @@ namespace StabilizedLagrangian
     }
 
     template std::shared_ptr<BoundaryFunction<2>>
-    parse_function<2>(ParameterHandler &, const std::string &, const std::string &);
+    parse_function<2>(ParameterHandler &, const std::string &, const std::string &, unsigned int);
     template std::shared_ptr<BoundaryFunction<3>>
-    parse_function<3>(ParameterHandler &, const std::string &, const std::string &);
+    parse_function<3>(ParameterHandler &, const std::string &, const std::string &, unsigned int);
     template class BoundaryFunction<2>;
     template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;

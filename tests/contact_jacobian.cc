@@ -16,13 +16,17 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/physics/transformations.h>
+
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
 #include <random>
+#include <sstream>
 
 using namespace dealii;
 using namespace StabilizedLagrangian;
@@ -107,6 +111,52 @@ subsection Output
 end
 )";
     return prm;
+  }
+
+  /**
+   * The ball of generalized_newton() as a ball at rest elsewhere, turned about
+   * the point c by the rotation θ (2D: 0.3 rad; 3D: the rotation vector
+   * (0.2, −0.1, 0.3)) and moved by d = (0.1, …): its centre at rest is
+   * c + Rᵀ(C − c − d).
+   */
+  template <int dim>
+  std::string
+  turned_ball()
+  {
+    Point<dim> C, c, d;
+    C[0]       = 1.;
+    C[dim - 1] = -10.;
+    if (dim == 3)
+      C[1] = 0.5;
+    c[0] = -2.;
+    c[1] = 3.;
+    d[0] = 0.1;
+    Tensor<2, dim> R;
+    std::string    angle;
+    if constexpr (dim == 2)
+      {
+        R     = Physics::Transformations::Rotations::rotation_matrix_2d(0.3);
+        angle = "0.3";
+      }
+    else
+      {
+        const Tensor<1, 3> vector({0.2, -0.1, 0.3});
+        R     = Physics::Transformations::Rotations::rotation_matrix_3d(vector / vector.norm(),
+                                                                    vector.norm());
+        angle = "0.2; -0.1; 0.3";
+      }
+    const Point<dim>   rest = c + transpose(R) * (C - c - d);
+    std::ostringstream text;
+    text << std::setprecision(17) << generalized_newton<dim>() << "subsection Obstacle\n"
+         << "  subsection ball\n    set Center = " << rest[0];
+    for (unsigned int i = 1; i < dim; ++i)
+      text << ", " << rest[i];
+    text << "\n  end\n  subsection Motion\n    set Function expression = 0.1; 0"
+         << (dim == 3 ? "; 0" : "") << "\n    set Rotation centre = -2, 3"
+         << (dim == 3 ? ", 0" : "")
+         << "\n    subsection Rotation\n      set Function expression = " << angle
+         << "\n    end\n  end\nend\n";
+    return text.str();
   }
 
   /**
@@ -401,6 +451,14 @@ main(int argc, char *argv[])
                   axisymmetric(finite_strain),
                   2.5e-2,
                   finite_strain ? "axisymmetric neo-Hookean " : "axisymmetric linear elastic ");
+  // a turned obstacle: the ball at rest elsewhere, turned by θ about a point
+  // so that it sits where generalized_newton() puts it: its normal's gradient
+  // turned by R (doc/formulation.md, "Moving obstacles")
+  for (const State state : {State::stick, State::slip})
+    {
+      test<2>(state, "Gauss-Lobatto", 0.3, true, turned_ball<2>(), 1e-3, "turned obstacle ");
+      test<3>(state, "Gauss-Lobatto", 0.3, true, turned_ball<3>(), 1e-3, "turned obstacle ");
+    }
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (failures ? "FAILED" : "PASSED") << std::endl;
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

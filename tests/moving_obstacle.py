@@ -66,13 +66,8 @@ with open(os.path.join(out, "output", "obstacle.pvd")) as f:
     listed = f.read().count("obstacle_")
 check(listed == 11, f"obstacle.pvd lists the surface at the 11 output times ({listed})")
 try:
-    import vtk
-    bounds = []
-    for step in (0, 10):
-        reader = vtk.vtkXMLUnstructuredGridReader()
-        reader.SetFileName(os.path.join(out, "output", f"obstacle_{step:05d}.vtu"))
-        reader.Update()
-        bounds.append(reader.GetOutput().GetBounds())
+    bounds = [sltest.read_vtu(os.path.join(out, "output", f"obstacle_{step:05d}.vtu")).GetBounds()
+              for step in (0, 10)]
     # the circle of radius 50 about (0, -50), then moved by d(1) = (2, 0.3); float32 coordinates
     expected = [(-50, 50, -100, 0), (-48, 52, -99.7, 0.3)]
     worst = max(abs(b[k] - e[k]) for b, e in zip(bounds, expected) for k in range(4))

@@ -152,8 +152,26 @@ def read_prm(path):
 
 
 def read_csv(path):
+    """The rows of a CSV file of numbers, as dicts of floats. A plane strain run names its force
+    columns per unit thickness (`..._N_per_mm`); each is also given under its 3D name
+    (`..._N`), so that a check reads both dimensions alike (tests/column_units.py checks the
+    names themselves)."""
     with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    for row in rows:
+        for key in list(row):
+            if key.endswith("_N_per_mm"):
+                row.setdefault(key[:-len("_per_mm")], row[key])
+    return rows
+
+
+def read_vtu(path):
+    """The vtkUnstructuredGrid of a .vtu file (python3-vtk9; ImportError without it)."""
+    import vtk
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
 
 
 def last_profile(outdir):

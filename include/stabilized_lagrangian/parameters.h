@@ -90,7 +90,7 @@ namespace StabilizedLagrangian
     public:
       /** @param entry the subsection path named in the message, e.g. `Boundary conditions/Dirichlet
        * 1/Displacement` */
-      explicit BoundaryFunction(const std::string &entry);
+      explicit BoundaryFunction(const std::string &entry, unsigned int n_components = dim);
 
       void
       vector_value(const Point<dim> &point, Vector<double> &values) const override;
@@ -121,13 +121,17 @@ namespace StabilizedLagrangian
     };
 
     /**
-     * @brief The vector function (dim components of the coordinates and t) in
-     * subsection @p name of the current subsection, checked: its variable
-     * names, its constants, and that it parses; errors name @p parent/@p name.
+     * @brief The vector function (@p n_components components of the
+     * coordinates and t, dim by default) in subsection @p name of the current
+     * subsection, checked: its variable names, its constants, and that it
+     * parses; errors name @p parent/@p name.
      */
     template <int dim>
     std::shared_ptr<BoundaryFunction<dim>>
-    parse_function(ParameterHandler &prm, const std::string &parent, const std::string &name);
+    parse_function(ParameterHandler  &prm,
+                   const std::string &parent,
+                   const std::string &name,
+                   unsigned int       n_components = dim);
 
     /** @brief A prescribed displacement on some components of a boundary. */
     template <int dim> struct DirichletCondition
@@ -163,17 +167,20 @@ namespace StabilizedLagrangian
 
     /**
      * @brief A rigid plate tied to a boundary: the boundary's displacement in
-     * the plate's components is one translation U (the plate is guided: it
-     * does not rotate), and the plate carries a resultant force F(t).
+     * the plate's components is one translation U (a guided plate), or
+     * U + θ × (X − X_0) (a plate free to turn, every component tied), and the
+     * plate carries a resultant force F(t) at X_0.
      */
     template <int dim> struct RigidPlateCondition
     {
       types::boundary_id boundary_id;
       std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       ComponentMask components;    ///< the components tied to U
-      std::shared_ptr<BoundaryFunction<dim>> force;   ///< F(t), N (N/mm of thickness in 2D)
-      std::string                            name;    ///< the subsection's name, for the columns
-      std::string                            section; ///< "Boundary conditions/Rigid plate <name>"
+      std::shared_ptr<BoundaryFunction<dim>> force;         ///< F(t), N (N/mm of thickness in 2D)
+      bool                                   free_rotation; ///< `Rotation = free`
+      std::optional<Point<dim>> reference_point;            ///< X_0; none: the boundary's centroid
+      std::string               name;    ///< the subsection's name, for the columns
+      std::string               section; ///< "Boundary conditions/Rigid plate <name>"
     };
 
     /**

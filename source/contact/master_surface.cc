@@ -357,7 +357,8 @@ namespace StabilizedLagrangian
     Tensor<1, dim>
     MasterSurface<dim>::follow(Pairing<dim>                        &pairing,
                                const TrilinosWrappers::MPI::Vector &u,
-                               const TrilinosWrappers::MPI::Vector &step_start) const
+                               const TrilinosWrappers::MPI::Vector &step_start,
+                               const Point<dim> &) const
     {
       if (pairing.master_face < 0)
         return Tensor<1, dim>();

@@ -596,11 +596,8 @@ namespace StabilizedLagrangian
       return;
     Triangulation<dim - 1, dim> surface;
     obstacle->make_surface_mesh(surface, BoundingBox<dim>(std::make_pair(low, high)));
-    Tensor<1, dim> translation;
-    obstacle_motion->set_time(t);
-    for (unsigned int c = 0; c < dim; ++c)
-      translation[c] = obstacle_motion->value(Point<dim>(), c);
-    GridTools::shift(translation, surface);
+    const Contact::RigidMotion<dim> motion = obstacle_motion->at(t);
+    GridTools::transform([&motion](const Point<dim> &X) { return motion.apply(X); }, surface);
     DataOut<dim - 1, dim> data_out;
     data_out.attach_triangulation(surface);
     data_out.build_patches();

@@ -45,8 +45,9 @@ namespace StabilizedLagrangian
     std::vector<Column<StepRow>>
     statistics_columns(const unsigned int dim, const StatisticsWriter::Supports &supports)
     {
-      const auto &reactions = supports.reaction_boundaries;
-      const auto  field = [](const std::string &name, const auto member, const int precision = 10) {
+      const auto        &reactions = supports.reaction_boundaries;
+      const std::string &N         = supports.force_unit;
+      const auto field = [](const std::string &name, const auto member, const int precision = 10) {
         return member_column<StepRow>(name, member, precision);
       };
       using S                              = StepStatistics;
@@ -64,30 +65,30 @@ namespace StabilizedLagrangian
           field("failed_attempt_newton_iterations", &S::failed_newton_iterations),
           field("assemblies", &S::assemblies),
           field("jacobian_assemblies", &S::jacobians),
-          field("final_residual_N", &S::final_residual),
+          field("final_residual_" + N, &S::final_residual),
           field("final_scaled_residual", &S::final_scaled),
           field("contact_points", &S::contact_points),
           field("points_in_contact", &S::points_in_contact),
           field("points_stick", &S::points_stick),
           field("points_slip", &S::points_slip),
-          field("normal_force_N", &S::normal_force),
-          field("tangential_force_N", &S::tangential_force)};
+          field("normal_force_" + N, &S::normal_force),
+          field("tangential_force_" + N, &S::tangential_force)};
       for (unsigned int d = 0; d < dim; ++d)
-        columns.push_back({std::string("contact_force_") + "xyz"[d] + "_N",
+        columns.push_back({std::string("contact_force_") + "xyz"[d] + "_" + N,
                            [d](std::ostream &out, const StepRow &row) {
                              out << std::setprecision(10) << row.record.contact_force[d];
                            }});
       for (unsigned int b = 0; b < reactions.size(); ++b)
         for (unsigned int d = 0; d < dim; ++d)
           columns.push_back(
-              {"reaction_boundary_" + std::to_string(reactions[b]) + "_" + "xyz"[d] + "_N",
+              {"reaction_boundary_" + std::to_string(reactions[b]) + "_" + "xyz"[d] + "_" + N,
                [b, d](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.reactions[b][d];
                }});
       for (unsigned int p = 0; p < supports.reaction_points.size(); ++p)
         for (unsigned int d = 0; d < dim; ++d)
           columns.push_back(
-              {"reaction_point_" + supports.reaction_points[p] + "_" + "xyz"[d] + "_N",
+              {"reaction_point_" + supports.reaction_points[p] + "_" + "xyz"[d] + "_" + N,
                [p, d](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.point_reactions[p][d];
                }});
@@ -100,15 +101,25 @@ namespace StabilizedLagrangian
                                  out << std::setprecision(10)
                                      << row.record.plate_displacements[p][d];
                                }});
-            columns.push_back({"plate_" + supports.plates[p] + "_force_" + axis + "_N",
+            columns.push_back({"plate_" + supports.plates[p] + "_force_" + axis + "_" + N,
                                [p, d](std::ostream &out, const StepRow &row) {
                                  out << std::setprecision(10) << row.record.plate_forces[p][d];
                                }});
           }
+      for (unsigned int p = 0; p < supports.plates.size(); ++p)
+        for (unsigned int a = 0; a < supports.plate_rotations[p]; ++a)
+          columns.push_back(
+              {"plate_" + supports.plates[p] + "_rotation_" +
+                   (supports.plate_rotations[p] == 1 ? std::string()
+                                                     : std::string(1, "xyz"[a]) + "_") +
+                   "rad",
+               [p, a](std::ostream &out, const StepRow &row) {
+                 out << std::setprecision(10) << row.record.plate_rotations[p][a];
+               }});
       for (unsigned int z = 0; z < supports.zones.size(); ++z)
         for (const unsigned int k : {0u, 1u})
           columns.push_back(
-              {"zone_" + supports.zones[z] + (k == 0 ? "_normal_force_N" : "_tangential_force_N"),
+              {"zone_" + supports.zones[z] + (k == 0 ? "_normal_force_" : "_tangential_force_") + N,
                [z, k](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.zone_forces[z][k];
                }});
@@ -128,7 +139,7 @@ namespace StabilizedLagrangian
 
     /** The columns of iterations.csv, in their order. */
     std::vector<Column<LoopRow>>
-    iterations_columns()
+    iterations_columns(const std::string &N)
     {
       const auto field = [](const std::string &name, const auto member) {
         return member_column<LoopRow>(name, member, 6);
@@ -139,7 +150,7 @@ namespace StabilizedLagrangian
               field("friction_iteration", &R::friction_iteration),
               field("status_iteration", &R::status_iteration),
               field("newton_iterations", &R::newton_iterations),
-              field("residual_N", &R::residual),
+              field("residual_" + N, &R::residual),
               field("scaled_residual", &R::scaled),
               field("status_changes", &R::status_changes)};
     }
@@ -180,7 +191,7 @@ namespace StabilizedLagrangian
     if (!root)
       return;
     SafeFiles::write_atomically(statistics_path, header(statistics_columns(dim, supports)));
-    SafeFiles::write_atomically(iterations_path, header(iterations_columns()));
+    SafeFiles::write_atomically(iterations_path, header(iterations_columns(supports.force_unit)));
   }
 
   void
@@ -228,7 +239,7 @@ namespace StabilizedLagrangian
     std::ostringstream row;
     write_line(row, statistics_columns(dimension, supports), StepRow{s, cumulative_newton});
     std::ostringstream                 rows;
-    const std::vector<Column<LoopRow>> columns = iterations_columns();
+    const std::vector<Column<LoopRow>> columns = iterations_columns(supports.force_unit);
     for (const auto &r : s.inner_loops)
       write_line(rows, columns, LoopRow{r, s.step});
     // the iterations first: a statistics row always has its inner loops

@@ -63,7 +63,9 @@ namespace StabilizedLagrangian
       bc.traction->check_finite(mpi_communicator);
     for (const auto &bc : boundary_conditions.springs)
       bc.reference->check_finite(mpi_communicator);
-    obstacle_motion->check_finite(mpi_communicator);
+    obstacle_translation->check_finite(mpi_communicator);
+    if (obstacle_rotation)
+      obstacle_rotation->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
     add_plate_forces();
     if (assemble_matrix)
@@ -368,21 +370,28 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::add_plate_forces()
   {
-    // F acts on the plate, whose translation is the reference DoF: the tied
-    // DoFs' equations are summed into its row by the constraints
+    // F acts on the plate at X_0: its virtual work F·δU = g·δq with g the
+    // force's components on the translation parameters (0 on the rotation's:
+    // no moment), i.e. A_R⁻ᵀ g on the reference DoFs, into whose rows the
+    // constraints sum the tied DoFs' equations
     Vector<double> force(dim);
     for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
       {
-        auto &plate = boundary_conditions.plates[p];
+        auto              &plate  = boundary_conditions.plates[p];
+        const PlateMotion &motion = plate_motions[p];
         plate.force->set_time(time);
         plate.force->vector_value(Point<dim>(), force);
         plate.force->check_finite(mpi_communicator);
-        for (unsigned int c = 0; c < dim; ++c)
-          if (plate_dofs[p][c] != numbers::invalid_dof_index &&
-              locally_owned.is_element(plate_dofs[p][c]))
+        Vector<double> g(motion.modes.size()), on_reference(motion.modes.size());
+        for (unsigned int k = 0; k < motion.modes.size(); ++k)
+          if (motion.modes[k] < dim)
+            g[k] = force(motion.modes[k]);
+        motion.inverse.Tvmult(on_reference, g);
+        for (unsigned int k = 0; k < motion.modes.size(); ++k)
+          if (locally_owned.is_element(motion.dofs[k]))
             {
-              system_rhs(plate_dofs[p][c]) -= force(c);
-              external_force(plate_dofs[p][c]) += force(c);
+              system_rhs(motion.dofs[k]) -= on_reference[k];
+              external_force(motion.dofs[k]) += on_reference[k];
             }
       }
     // the point loads at their vertices' DoFs, through the constraints (a

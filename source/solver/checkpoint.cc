@@ -28,7 +28,7 @@ namespace StabilizedLagrangian
 
   namespace
   {
-    constexpr char magic[] = "stabilized_lagrangian checkpoint 1";
+    constexpr char magic[] = "stabilized_lagrangian checkpoint 2";
 
     /** Binary writer of trivially copyable values and vectors of them. */
     class Writer
@@ -415,6 +415,10 @@ namespace StabilizedLagrangian
     in.get(saved_dim);
     in.get(saved_n_ranks);
     in.get(saved_rank);
+    if (header != magic && header.rfind("stabilized_lagrangian checkpoint", 0) == 0)
+      throw InputError("the checkpoint file " + path + " was written by another version of the " +
+                       "program ('" + header + "'; this one reads '" + magic +
+                       "'): start the run again without --resume.");
     if (header != magic || saved_dim != dim || saved_rank != rank)
       throw InputError("the checkpoint file " + path + " is not a " + std::to_string(dim) +
                        "D checkpoint of rank " + std::to_string(rank) + ".");

@@ -401,7 +401,8 @@ namespace StabilizedLagrangian
   {
     if (what.pairing)
       state.pairing = partner->project(k.position);
-    k.step_increment -= partner->follow(state.pairing, ghosted_solution, step_start);
+    k.step_increment -=
+        partner->follow(state.pairing, ghosted_solution, step_start, k.position - k.step_increment);
     if (what.threshold)
       state.friction_threshold =
           friction_law_of(state).threshold(threshold_pressure(k.contact_pressure));

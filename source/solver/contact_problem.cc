@@ -43,7 +43,29 @@ namespace StabilizedLagrangian
 
     obstacle = Obstacles::create<dim>(prm);
     prm.enter_subsection("Obstacle");
-    obstacle_motion = Parameters::parse_function<dim>(prm, "Obstacle", "Motion");
+    obstacle_translation = Parameters::parse_function<dim>(prm, "Obstacle", "Motion");
+    {
+      prm.enter_subsection("Motion");
+      const std::vector<double> centre =
+          Utilities::string_to_double(Utilities::split_string_list(prm.get("Rotation centre")));
+      Point<dim> rotation_centre;
+      for (unsigned int d = 0; d < dim; ++d)
+        rotation_centre[d] = centre[d];
+      // an angle of 0 (the default) is no rotation: a plane's pairing then
+      // follows the obstacle within the step (Contact::RigidObstacle::is_flat())
+      prm.enter_subsection("Rotation");
+      bool turns = false;
+      for (const auto &component :
+           Utilities::split_string_list(prm.get("Function expression"), ';'))
+        turns |= component != "0";
+      prm.leave_subsection();
+      if (turns)
+        obstacle_rotation =
+            Parameters::parse_function<dim>(prm, "Obstacle/Motion", "Rotation", dim == 2 ? 1 : 3);
+      prm.leave_subsection();
+      obstacle_motion = std::make_shared<const Contact::ObstacleMotion<dim>>(
+          obstacle_translation, obstacle_rotation, rotation_centre);
+    }
     prm.leave_subsection();
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");

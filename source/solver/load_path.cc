@@ -86,8 +86,10 @@ namespace StabilizedLagrangian
         !resume)
       SafeFiles::write_atomically(run_directory + "/refinement_cycles.csv",
                                   "cycle,cells,displacement_dofs,multiplier_dofs,newton_iterations,"
-                                  "normal_force_N,estimated_error_sqrtNmm,estimated_relative_error,"
-                                  "estimated_pressure_error,wall_time_s" +
+                                  "normal_force_" +
+                                      force_unit(true) +
+                                      ",estimated_error_sqrtNmm,estimated_relative_error,"
+                                      "estimated_pressure_error,wall_time_s" +
                                       std::string(inf_sup_checked() ? ",inf_sup_beta\n" : "\n"));
     if (adaptive_refinement.errors_against_last_cycle && resume)
       pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
@@ -556,8 +558,8 @@ namespace StabilizedLagrangian
          << (s.adaptive_stops > 0
                  ? " (" + std::to_string(s.adaptive_stops) + " loop(s) stopped adaptively)"
                  : std::string())
-         << "  residual " << std::scientific << std::setprecision(2) << s.final_residual
-         << " N, scaled " << s.final_scaled << std::defaultfloat << "  contact "
+         << "  residual " << std::scientific << std::setprecision(2) << s.final_residual << ' '
+         << force_unit(false) << ", scaled " << s.final_scaled << std::defaultfloat << "  contact "
          << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
          << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
          << elapsed << " s, remaining ~" << remaining << " s\n";

@@ -176,9 +176,10 @@ namespace StabilizedLagrangian
     const unsigned int iteration = progress.iteration;
     if (iteration == solver_parameters.newton_max_iterations)
       {
-        pcout << "  Newton: residual " << measured.residual << " N (" << measured.measure
-              << " against the criterion's tolerance " << measured.tolerance << ") after "
-              << iteration << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+        pcout << "  Newton: residual " << measured.residual << ' ' << force_unit(false) << " ("
+              << measured.measure << " against the criterion's tolerance " << measured.tolerance
+              << ") after " << iteration
+              << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
         return false;
       }
     if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
@@ -408,8 +409,8 @@ namespace StabilizedLagrangian
     const ScaledResidual scaled = scaled_residual();
     std::ostringstream   line;
     line << std::setprecision(6) << "    Newton " << iteration << ": residual " << residual_norm()
-         << " N; scaled: force " << scaled.force << ", gap " << scaled.gap << ", slip "
-         << scaled.slip << "\n";
+         << ' ' << force_unit(false) << "; scaled: force " << scaled.force << ", gap " << scaled.gap
+         << ", slip " << scaled.slip << "\n";
     pcout << line.str();
   }
 

@@ -123,9 +123,13 @@ namespace StabilizedLagrangian
     for (const auto &bc : boundary_conditions.point_dirichlet)
       supports.reaction_points.push_back(bc.name);
     for (const auto &plate : boundary_conditions.plates)
-      supports.plates.push_back(plate.name);
+      {
+        supports.plates.push_back(plate.name);
+        supports.plate_rotations.push_back(plate.free_rotation ? (dim == 2 ? 1 : 3) : 0);
+      }
     for (const auto &zone : contact_zones)
       supports.zones.push_back(zone.name);
+    supports.force_unit = force_unit(true);
     return supports;
   }
 
@@ -134,20 +138,31 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
   {
     stats.plate_displacements.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
+    stats.plate_rotations.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
     stats.plate_forces.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
     Vector<double> force(dim);
     for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
       {
+        const PlateMotion &motion = plate_motions[p];
         boundary_conditions.plates[p].force->set_time(time);
         boundary_conditions.plates[p].force->vector_value(Point<dim>(), force);
-        for (unsigned int c = 0; c < dim; ++c)
-          if (plate_dofs[p][c] != numbers::invalid_dof_index)
+        // the parameters q = A_R⁻¹ u_R: U, and θ scaled by the plate's size
+        Vector<double> reference(motion.modes.size()), q(motion.modes.size());
+        for (unsigned int k = 0; k < motion.modes.size(); ++k)
+          if (locally_owned.is_element(motion.dofs[k]))
+            reference[k] = solution(motion.dofs[k]);
+        Utilities::MPI::sum(ArrayView<const double>(reference.begin(), reference.size()),
+                            mpi_communicator,
+                            ArrayView<double>(reference.begin(), reference.size()));
+        motion.inverse.vmult(q, reference);
+        for (unsigned int k = 0; k < motion.modes.size(); ++k)
+          if (motion.modes[k] < dim)
             {
-              const bool owned = locally_owned.is_element(plate_dofs[p][c]);
-              stats.plate_displacements[p][c] =
-                  Utilities::MPI::sum(owned ? solution(plate_dofs[p][c]) : 0., mpi_communicator);
-              stats.plate_forces[p][c] = force(c);
+              stats.plate_displacements[p][motion.modes[k]] = q[k];
+              stats.plate_forces[p][motion.modes[k]]        = force(motion.modes[k]);
             }
+          else
+            stats.plate_rotations[p][motion.modes[k] - dim] = q[k] / motion.size;
       }
     const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());

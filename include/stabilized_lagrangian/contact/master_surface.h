@@ -106,7 +106,8 @@ namespace StabilizedLagrangian
       Tensor<1, dim>
       follow(Pairing<dim>                        &pairing,
              const TrilinosWrappers::MPI::Vector &u,
-             const TrilinosWrappers::MPI::Vector &step_start) const override;
+             const TrilinosWrappers::MPI::Vector &step_start,
+             const Point<dim> &) const override;
 
       /**
        * @brief The displacement DoFs of face @p face and their shape values at

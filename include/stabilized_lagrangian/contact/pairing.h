@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 #include <array>
@@ -10,6 +11,32 @@ namespace StabilizedLagrangian
   namespace Contact
   {
     using namespace dealii;
+
+    /**
+     * @brief A rigid motion x = c + d + R (X − c) of a rigid obstacle: the
+     * translation d of its centre c and the rotation R about it; the identity
+     * by default.
+     */
+    template <int dim> struct RigidMotion
+    {
+      Point<dim>     centre;
+      Tensor<1, dim> translation;
+      Tensor<2, dim> rotation = unit_symmetric_tensor<dim>();
+
+      /** @brief Where the motion takes the point @p X of the obstacle at rest. */
+      Point<dim>
+      apply(const Point<dim> &X) const
+      {
+        return centre + translation + rotation * (X - centre);
+      }
+
+      /** @brief The point of the obstacle at rest that the motion takes to @p x. */
+      Point<dim>
+      inverse(const Point<dim> &x) const
+      {
+        return centre + transpose(rotation) * (x - centre - translation);
+      }
+    };
 
     /**
      * @brief Pairing of a slave point with the contact partner (doc/formulation.md,
@@ -38,10 +65,11 @@ namespace StabilizedLagrangian
       int            master_face = -1;
       Point<dim - 1> master_reference_point;
       /**
-       * With a moving rigid obstacle: its translation when the pairing was
-       * made or last followed (Partner::follow() moves x² by what it moved since).
+       * With a moving rigid obstacle: its position when the pairing was made
+       * or last followed (Partner::follow() moves x², n and t_α by the motion
+       * since).
        */
-      Tensor<1, dim> partner_offset;
+      RigidMotion<dim> partner_motion;
       /**
        * With a deformable master, at ξ in the configuration of the pairing
        * (Partner::follow()): the surface tangents τ_a = ∂x²/∂ξ_a, the second

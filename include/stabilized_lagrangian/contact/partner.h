@@ -83,12 +83,16 @@ namespace StabilizedLagrangian
       /**
        * @brief Move the frozen pairing's master point x²(ξ) with the partner's
        * displacement in @p u, and return the partner's displacement increment
-       * at it since @p step_start, Δu²(ξ), which the slip increment is relative to.
+       * since @p step_start, Δu², which the slip increment is relative to: at
+       * ξ for a deformable partner, at the slave point's position at the
+       * step's start @p slave_start for a rigid one (where the obstacle's
+       * rigid motion takes that point).
        */
       virtual Tensor<1, dim>
       follow(Pairing<dim>                        &pairing,
              const TrilinosWrappers::MPI::Vector &u,
-             const TrilinosWrappers::MPI::Vector &step_start) const = 0;
+             const TrilinosWrappers::MPI::Vector &step_start,
+             const Point<dim>                    &slave_start) const = 0;
 
       /** @brief The partner's displacement DoFs (in the DoFHandler's numbering). */
       virtual const IndexSet &
@@ -138,45 +142,88 @@ namespace StabilizedLagrangian
     };
 
     /**
+     * @brief The rigid motion of an obstacle over time (`Obstacle/Motion`):
+     * the translation d(t) and the rotation θ(t) about the centre c, which
+     * moves with d (doc/formulation.md, "Moving obstacles").
+     */
+    template <int dim> class ObstacleMotion
+    {
+    public:
+      /**
+       * @p translation: d(t), dim components, evaluated at the origin;
+       * @p rotation: θ(t), the angle (rad, counter-clockwise) in 2D and the
+       * rotation vector (axis times angle, rad) in 3D, or null for none;
+       * @p centre: c, the point the obstacle turns about, at rest.
+       */
+      ObstacleMotion(std::shared_ptr<Function<dim>> translation,
+                     std::shared_ptr<Function<dim>> rotation,
+                     const Point<dim>              &centre)
+          : translation(std::move(translation))
+          , rotation(std::move(rotation))
+          , centre(centre)
+      {
+      }
+
+      /** @brief The obstacle's position at time @p t. */
+      RigidMotion<dim>
+      at(const double t) const;
+
+      /** @brief True when the obstacle turns (its normals change with time). */
+      bool
+      rotates() const
+      {
+        return rotation != nullptr;
+      }
+
+    private:
+      std::shared_ptr<Function<dim>> translation;
+      std::shared_ptr<Function<dim>> rotation;
+      Point<dim>                     centre;
+    };
+
+    /**
      * @brief A rigid analytic obstacle (an `Obstacle` plug-in) as the contact
-     * partner: smooth, without DoFs, fixed in space or translated by a given
-     * motion d(t) (`Obstacle/Motion`).
+     * partner: smooth, without DoFs, fixed in space or moved by a rigid
+     * motion (ObstacleMotion).
      */
     template <int dim> class RigidObstacle : public Partner<dim>
     {
     public:
       /**
-       * @p motion: the translation d(t) (dim components; evaluated at the
-       * origin), or null for a fixed obstacle.
+       * @p motion: the obstacle's rigid motion, or null for a fixed obstacle;
+       * until set_time() the obstacle is where the motion puts it at t = 0.
        */
-      explicit RigidObstacle(const Obstacles::Interface<dim> &obstacle,
-                             std::shared_ptr<Function<dim>>   motion = nullptr)
+      explicit RigidObstacle(const Obstacles::Interface<dim>           &obstacle,
+                             std::shared_ptr<const ObstacleMotion<dim>> motion = nullptr)
           : obstacle(obstacle)
           , motion(std::move(motion))
       {
+        set_time(0., 0.);
       }
 
-      /** The obstacle translated by d: the pairing of x − d, moved by d. */
+      /**
+       * The moved obstacle's pairing: that of the obstacle at rest with the
+       * point the motion takes to x, moved by the motion (n, t_α and their
+       * gradients turned by R).
+       */
       Pairing<dim>
-      project(const Point<dim> &x) const override
-      {
-        Pairing<dim> pairing = obstacle.project(x - offset_now);
-        pairing.master_point += offset_now;
-        pairing.partner_offset = offset_now;
-        return pairing;
-      }
+      project(const Point<dim> &x) const override;
 
       void
       set_time(const double start, const double now) override
       {
-        offset_start = translation(start);
-        offset_now   = translation(now);
+        if (motion)
+          {
+            motion_start = motion->at(start);
+            motion_now   = motion->at(now);
+          }
       }
 
+      /** A turning plane's normal changes from step to step: it is paired anew. */
       bool
       is_flat() const override
       {
-        return obstacle.is_flat();
+        return obstacle.is_flat() && !(motion && motion->rotates());
       }
 
       bool
@@ -197,18 +244,15 @@ namespace StabilizedLagrangian
       }
 
       /**
-       * The frozen pairing's master point moved with the obstacle; the slip is
-       * relative to the obstacle's translation since the step's start.
+       * The frozen pairing moved with the obstacle since it was made; the slip
+       * is relative to the obstacle: Δu² is where the obstacle's motion over
+       * the step takes the slave point's start position, minus that position.
        */
       Tensor<1, dim>
       follow(Pairing<dim> &pairing,
              const TrilinosWrappers::MPI::Vector &,
-             const TrilinosWrappers::MPI::Vector &) const override
-      {
-        pairing.master_point += offset_now - pairing.partner_offset;
-        pairing.partner_offset = offset_now;
-        return offset_now - offset_start;
-      }
+             const TrilinosWrappers::MPI::Vector &,
+             const Point<dim> &slave_start) const override;
 
       const IndexSet &
       dofs() const override
@@ -252,24 +296,11 @@ namespace StabilizedLagrangian
       }
 
     private:
-      Tensor<1, dim>
-      translation(const double t) const
-      {
-        Tensor<1, dim> d;
-        if (motion)
-          {
-            motion->set_time(t);
-            for (unsigned int c = 0; c < dim; ++c)
-              d[c] = motion->value(Point<dim>(), c);
-          }
-        return d;
-      }
-
-      const Obstacles::Interface<dim> &obstacle;
-      std::shared_ptr<Function<dim>>   motion;
-      Tensor<1, dim>                   offset_start, offset_now;
-      const IndexSet                   no_dofs;
-      const std::vector<unsigned int>  no_faces;
+      const Obstacles::Interface<dim>           &obstacle;
+      std::shared_ptr<const ObstacleMotion<dim>> motion;
+      RigidMotion<dim>                           motion_start, motion_now;
+      const IndexSet                             no_dofs;
+      const std::vector<unsigned int>            no_faces;
     };
   } // namespace Contact
 } // namespace StabilizedLagrangian

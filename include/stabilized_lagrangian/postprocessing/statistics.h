@@ -60,6 +60,8 @@ namespace StabilizedLagrangian
     std::vector<std::array<double, 3>> point_reactions;
     /** each rigid plate's translation U (mm), in the order of StatisticsWriter's plates */
     std::vector<std::array<double, 3>> plate_displacements;
+    /** each rigid plate's rotation θ (rad; 2D: about z, in component 0), 0 for a guided one */
+    std::vector<std::array<double, 3>> plate_rotations;
     /** the force F(t) on each rigid plate (N; N/mm in 2D) */
     std::vector<std::array<double, 3>> plate_forces;
     /** each contact zone's normal and tangential force (N; N/mm in 2D), as the totals' */
@@ -114,8 +116,19 @@ namespace StabilizedLagrangian
       std::vector<std::string> reaction_points;
       /** the rigid plates' names: plate_<name>_{displacement_<axis>_mm,force_<axis>_N} */
       std::vector<std::string> plates;
+      /**
+       * the number of each plate's rotation components (0 guided, 1 in 2D, 3 in
+       * 3D): plate_<name>_rotation_rad (2D), plate_<name>_rotation_<axis>_rad (3D)
+       */
+      std::vector<unsigned int> plate_rotations;
       /** the contact zones' names: zone_<name>_{normal,tangential}_force_N */
       std::vector<std::string> zones;
+      /**
+       * the unit of the force columns' names: N, or N_per_mm for the forces per
+       * unit thickness of a plane strain model (every `_N` above is then
+       * `_N_per_mm`)
+       */
+      std::string force_unit = "N";
     };
 
     /** @brief What a checkpoint keeps to continue the files where it was taken. */

@@ -1107,14 +1107,22 @@ namespace StabilizedLagrangian
     void
     add_axis_constraints(AffineConstraints<double> &constraints) const;
     /**
-     * Each rigid plate's reference DoF per tied component (the smallest index
-     * on its boundary that no Dirichlet condition or hanging node constrains),
-     * into plate_dofs; refuse a plate whose DoFs a Dirichlet condition holds in
-     * the same component.
+     * Each rigid plate's reference DoFs (PlateMotion), chosen among the DoFs
+     * of its boundary that no hanging node constrains; refuse a plate whose
+     * DoFs a Dirichlet condition holds in a tied component, or whose nodes do
+     * not fix its rotation.
      */
     void
     find_plate_dofs();
-    /** u_i = u_ref on each rigid plate's boundary, per tied component. */
+    /**
+     * Calls @p f(dof, component, support point) for the DoFs of the tied
+     * components of plate @p p on the locally owned (and, with
+     * @p with_ghosts, ghost) cells, once per cell that has them.
+     */
+    template <typename Function>
+    void
+    for_each_plate_dof(unsigned int p, bool with_ghosts, const Function &f) const;
+    /** u_i = Σ_k C_ik u_{r_k} on each rigid plate's boundary (PlateMotion::coefficients()). */
     void
     add_plate_constraints(AffineConstraints<double> &constraints) const;
     /** Each rigid plate's force F(t) at its reference DoFs, in the residual and external_force. */
@@ -1352,6 +1360,17 @@ namespace StabilizedLagrangian
      */
     std::vector<types::boundary_id>
     supported_boundaries() const;
+    /**
+     * The unit of forces: N, or per unit thickness in plane strain, N/mm
+     * (@p column: as a column name's suffix, N_per_mm).
+     */
+    std::string
+    force_unit(const bool column) const
+    {
+      if (dim == 3 || axisymmetric)
+        return "N";
+      return column ? "N_per_mm" : "N/mm";
+    }
     /** The supports statistics.csv has columns for: the supported boundaries, the rigid plates. */
     StatisticsWriter::Supports
     statistics_supports() const;
@@ -1594,7 +1613,11 @@ namespace StabilizedLagrangian
     std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
     /** `Obstacle/Motion`: the rigid obstacle's translation d(t) */
-    std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_motion;
+    std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_translation;
+    /** `Obstacle/Motion/Rotation`: its rotation θ(t), null when it does not turn */
+    std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_rotation;
+    /** the two, about `Obstacle/Motion/Rotation centre` */
+    std::shared_ptr<const Contact::ObstacleMotion<dim>> obstacle_motion;
     /** the default model first, then the slots in use; material_slots maps a body's id to one */
     std::vector<Materials::BodyMaterial<dim>>  materials;
     std::map<types::material_id, unsigned int> material_slots;
@@ -1681,10 +1704,34 @@ namespace StabilizedLagrangian
     /** owned: the nodal external (Neumann, spring, plate) forces of the last assembly */
     TrilinosWrappers::MPI::Vector external_force;
     /**
-     * The reference DoF of each rigid plate per component (its translation U),
-     * numbers::invalid_dof_index for the components the plate does not tie
+     * A rigid plate's motion u(X) = U + θ × (X − X_0), linear in its
+     * parameters q (the tied components of U; with `Rotation = free` also θ,
+     * scaled by the plate's size): u at a DoF in component c at X is
+     * a(X, c)·q. The plate's DoFs follow the values of m reference DoFs r_k,
+     * q = A_R⁻¹ u_R with A_R the rows a of the reference DoFs
+     * (doc/formulation.md, "Rigid plates").
      */
-    std::vector<std::array<types::global_dof_index, dim>> plate_dofs;
+    struct PlateMotion
+    {
+      /** the parameters: 0..dim−1 the translation's components, dim.. the rotation's */
+      std::vector<unsigned int> modes;
+      /** the reference DoFs r_k, one per parameter */
+      std::vector<types::global_dof_index> dofs;
+      /** A_R⁻¹: the parameters from the reference DoFs' values */
+      FullMatrix<double> inverse;
+      /** X_0, where the force acts and θ turns about, and the length the rotation is scaled by */
+      Point<dim> point;
+      double     size = 1.;
+
+      /** a(X, c): the displacement in component @p c at @p X per parameter */
+      Vector<double>
+      row(const Point<dim> &X, unsigned int c) const;
+      /** C_i = A_R⁻ᵀ a(X, c): the DoF at @p X in component @p c is Σ_k C_ik u_{r_k} */
+      Vector<double>
+      coefficients(const Point<dim> &X, unsigned int c) const;
+    };
+    /** Each rigid plate's motion and reference DoFs */
+    std::vector<PlateMotion> plate_motions;
     /** The DoFs of each point load's vertex, per component */
     std::vector<std::array<types::global_dof_index, dim>> point_load_dofs;
     /** The DoFs of each point Dirichlet condition's vertex, per component */
