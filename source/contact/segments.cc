@@ -9,28 +9,59 @@ namespace StabilizedLagrangian
 {
   namespace Contact
   {
-    std::vector<Point<2>>
-    clip_to_unit_square(std::vector<Point<2>> polygon)
+    namespace
     {
-      for (unsigned int d = 0; d < 2; ++d)
-        for (const double side : {0., 1.})
+      /**
+       * The part of a convex polygon where a·ξ ≤ b for every half-plane (a, b)
+       * of @p half_planes (Sutherland–Hodgman, one half-plane after the other).
+       */
+      std::vector<Point<2>>
+      clip(std::vector<Point<2>>                               polygon,
+           const std::vector<std::pair<Tensor<1, 2>, double>> &half_planes)
+      {
+        for (const auto &[a, b] : half_planes)
           {
-            const auto inside = [d, side](const Point<2> &p) {
-              return side == 0. ? p[d] >= 0. : p[d] <= 1.;
-            };
+            const auto            excess = [&a = a, b = b](const Point<2> &p) { return a * p - b; };
             std::vector<Point<2>> kept;
             for (unsigned int i = 0; i < polygon.size(); ++i)
               {
-                const Point<2> &a = polygon[i];
-                const Point<2> &b = polygon[(i + 1) % polygon.size()];
-                if (inside(a))
-                  kept.push_back(a);
-                if (inside(a) != inside(b))
-                  kept.push_back(a + (side - a[d]) / (b[d] - a[d]) * (b - a));
+                const Point<2> &p = polygon[i];
+                const Point<2> &q = polygon[(i + 1) % polygon.size()];
+                if (excess(p) <= 0.)
+                  kept.push_back(p);
+                if ((excess(p) <= 0.) != (excess(q) <= 0.))
+                  kept.push_back(p + excess(p) / (excess(p) - excess(q)) * (q - p));
               }
             polygon = kept;
           }
-      return polygon;
+        return polygon;
+      }
+
+      Tensor<1, 2>
+      direction(const double x, const double y)
+      {
+        Tensor<1, 2> a;
+        a[0] = x;
+        a[1] = y;
+        return a;
+      }
+    } // namespace
+
+    std::vector<Point<2>>
+    clip_to_unit_square(std::vector<Point<2>> polygon)
+    {
+      return clip(std::move(polygon),
+                  {{direction(-1., 0.), 0.},
+                   {direction(1., 0.), 1.},
+                   {direction(0., -1.), 0.},
+                   {direction(0., 1.), 1.}});
+    }
+
+    std::vector<Point<2>>
+    clip_to_unit_triangle(std::vector<Point<2>> polygon)
+    {
+      return clip(std::move(polygon),
+                  {{direction(-1., 0.), 0.}, {direction(0., -1.), 0.}, {direction(1., 1.), 1.}});
     }
 
     double
@@ -88,6 +119,31 @@ namespace StabilizedLagrangian
         return {xi, p.distance(bilinear(corners, xi, dx))};
       }
 
+      /**
+       * The reference point of the closest point of the slave face with
+       * corners @p corners to @p p, and the distance: the bilinear
+       * quadrilateral (four corners, lexicographic) or the flat triangle
+       * (three corners: (0,0), (1,0), (0,1)), whose affine map is inverted in
+       * one step.
+       */
+      std::pair<Point<2>, double>
+      project_on_face(const std::vector<Point<3>> &corners, const Point<3> &p)
+      {
+        if (corners.size() == 4)
+          return project({{corners[0], corners[1], corners[2], corners[3]}}, p);
+        const Tensor<1, 3> e[2] = {corners[1] - corners[0], corners[2] - corners[0]};
+        Tensor<2, 2>       normal_matrix;
+        Tensor<1, 2>       rhs;
+        for (unsigned int a = 0; a < 2; ++a)
+          {
+            rhs[a] = e[a] * (p - corners[0]);
+            for (unsigned int b = 0; b < 2; ++b)
+              normal_matrix[a][b] = e[a] * e[b];
+          }
+        const Point<2> xi(invert(normal_matrix) * rhs);
+        return {xi, p.distance(corners[0] + xi[0] * e[0] + xi[1] * e[1])};
+      }
+
       /** A collapsed (Duffy) Gauss rule on the triangle a, b, c, appended. */
       void
       add_triangle(const Point<2>        &a,
@@ -110,35 +166,48 @@ namespace StabilizedLagrangian
     } // namespace
 
     std::shared_ptr<const Quadrature<2>>
-    face_segments(const std::array<Point<3>, 4> &slave_corners,
-                  const std::vector<Point<3>>   &master_vertices,
-                  const unsigned int             n_points)
+    face_segments(const std::vector<Point<3>> &slave_corners,
+                  const std::vector<Point<3>> &master_vertices,
+                  const unsigned int           vertices_per_master_face,
+                  const unsigned int           n_points)
     {
-      const double diameter = std::max(slave_corners[0].distance(slave_corners[3]),
-                                       slave_corners[1].distance(slave_corners[2]));
+      Assert(slave_corners.size() == 3 || slave_corners.size() == 4, ExcInternalError());
+      const bool triangle = slave_corners.size() == 3;
+      if (vertices_per_master_face < 3)
+        return nullptr;
+      // the face's area in its reference coordinates, and its size
+      const double reference_area = triangle ? 0.5 : 1.;
+      double       diameter       = 0.;
+      for (const auto &a : slave_corners)
+        for (const auto &b : slave_corners)
+          diameter = std::max(diameter, a.distance(b));
+      // a master face's corners around its boundary: (0,0), (1,0), (1,1), (0,1), or the triangle's
+      const std::vector<unsigned int>    around = vertices_per_master_face == 4
+                                                      ? std::vector<unsigned int>{0, 1, 3, 2}
+                                                      : std::vector<unsigned int>{0, 1, 2};
       std::vector<std::vector<Point<2>>> parts;
       double                             covered = 0.;
-      for (unsigned int f = 0; f + 4 <= master_vertices.size(); f += 4)
+      for (unsigned int f = 0; f + vertices_per_master_face <= master_vertices.size();
+           f += vertices_per_master_face)
         {
-          // the face's corners around its boundary: (0,0), (1,0), (1,1), (0,1)
           std::vector<Point<2>> polygon;
           bool                  near = true;
-          for (const unsigned int v : {0u, 1u, 3u, 2u})
+          for (const unsigned int v : around)
             {
-              const auto [xi, distance] = project(slave_corners, master_vertices[f + v]);
+              const auto [xi, distance] = project_on_face(slave_corners, master_vertices[f + v]);
               near                      = near && distance <= diameter;
               polygon.push_back(xi);
             }
           if (!near)
             continue;
-          polygon           = clip_to_unit_square(polygon);
+          polygon = triangle ? clip_to_unit_triangle(polygon) : clip_to_unit_square(polygon);
           const double area = polygon_area(polygon);
-          if (polygon.size() < 3 || area < 1e-12)
+          if (polygon.size() < 3 || area < 1e-12 * reference_area)
             continue;
           parts.push_back(polygon);
           covered += area;
         }
-      if (parts.size() < 2 || std::abs(covered - 1.) > 1e-3)
+      if (parts.size() < 2 || std::abs(covered - reference_area) > 1e-3 * reference_area)
         return nullptr;
       const QGauss<1>       gauss(n_points);
       std::vector<Point<2>> points;
@@ -147,7 +216,7 @@ namespace StabilizedLagrangian
         for (unsigned int k = 1; k + 1 < part.size(); ++k)
           add_triangle(part[0], part[k], part[k + 1], gauss, points, weights);
       for (double &w : weights)
-        w /= covered;
+        w *= reference_area / covered;
       return std::make_shared<const Quadrature<2>>(points, weights);
     }
   } // namespace Contact

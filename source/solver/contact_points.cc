@@ -272,10 +272,8 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::update_segments()
   {
-    // (triangle faces are not cut: the quadrature of the contact faces is used whole)
-    if (dim == 3 && simplex_mesh())
-      return false;
-    FaceEvaluator                       ends(*this, QTrapezoid<dim - 1>(), false);
+    // the faces' corners (the vertices of a triangle face)
+    FaceEvaluator                       ends(*this, face_nodes(1), false);
     std::vector<ContactFace>            faces;
     std::vector<ContactPointState<dim>> states;
     int                                 changed = 0;
@@ -332,13 +330,12 @@ namespace StabilizedLagrangian
       return nullptr;
     if constexpr (dim == 3)
       {
-        // a quadrilateral face against the master's quadrilaterals
-        const unsigned int n_1d = static_cast<unsigned int>(
-            std::lround(std::sqrt(static_cast<double>(contact_quadrature.size()))));
+        // a quadrilateral or triangle face against the master's faces, with
+        // the collapsed rule of the face quadrature's degree on each part
+        const unsigned int n_1d =
+            std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1;
         return Contact::face_segments(
-            {{at_corners[0], at_corners[1], at_corners[2], at_corners[3]}},
-            master_vertices,
-            2 * n_1d - 1);
+            at_corners, master_vertices, partner->vertices_per_face(), 2 * n_1d - 1);
       }
     else
       {

@@ -291,8 +291,8 @@ namespace StabilizedLagrangian
                        "uniformly with Geometry/.../Global refinements.");
     if (dim == 3 && !contact_parameters.master_ids.empty())
       throw InputError("Contact/Master boundary ids: contact between two deformable bodies "
-                       "meshed with tetrahedra needs the segment integration of triangle "
-                       "faces, which is not built yet; in 3D mesh the bodies with hexahedra.");
+                       "meshed with tetrahedra needs a master surface of triangle faces, which "
+                       "is not built yet; in 3D mesh the bodies with hexahedra.");
   }
 
   template <int dim>

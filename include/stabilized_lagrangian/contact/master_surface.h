@@ -142,6 +142,12 @@ namespace StabilizedLagrangian
       std::vector<Point<dim>>
       vertices_near(const BoundingBox<dim> &box) const override;
 
+      unsigned int
+      vertices_per_face() const override
+      {
+        return n_vertices;
+      }
+
       /** @brief The faces sharing a node with the paired face, itself included. */
       const std::vector<unsigned int> &
       faces_near(const Pairing<dim> &pairing) const override

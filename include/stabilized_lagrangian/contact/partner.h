@@ -139,6 +139,13 @@ namespace StabilizedLagrangian
        */
       virtual std::vector<Point<dim>>
       vertices_near(const BoundingBox<dim> &box) const = 0;
+
+      /** @brief The number of vertices of each face in vertices_near() (0: it has none). */
+      virtual unsigned int
+      vertices_per_face() const
+      {
+        return 0;
+      }
     };
 
     /**
