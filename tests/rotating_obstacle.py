@@ -108,8 +108,7 @@ try:
           f"them (off by {worst:.1e} mm; float32 coordinates)")
     # contrib/render_pvd.py draws the obstacle where contrib/run_output.py's moved_obstacle()
     # finds it in those files: the roller's centre phi(C), C = (0, -50) at rest
-    sys.path.insert(0, os.path.join(root, "contrib"))
-    import run_output
+    run_output = sltest.run_output
     rest = run_output.rigid_obstacle(run_output.run_parameters(os.path.join(out, "output")))
     moved = run_output.moved_obstacle(rest, os.path.join(out, "output"), 10)
     centre = (-s * (-50 - CY), CY + D + c * (-50 - CY))

@@ -6,6 +6,9 @@ import re
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
+import run_output  # noqa: E402
+
 MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1")
 
@@ -154,15 +157,10 @@ def read_prm(path):
 def read_csv(path):
     """The rows of a CSV file of numbers, as dicts of floats. A plane strain run names its force
     columns per unit thickness (`..._N_per_mm`); each is also given under its 3D name
-    (`..._N`), so that a check reads both dimensions alike (tests/column_units.py checks the
-    names themselves)."""
+    (`..._N`, contrib/run_output.py's force_aliases()), so that a check reads both dimensions
+    alike (tests/column_units.py checks the names themselves)."""
     with open(path) as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
-    for row in rows:
-        for key in list(row):
-            if key.endswith("_N_per_mm"):
-                row.setdefault(key[:-len("_per_mm")], row[key])
-    return rows
+        return [run_output.force_aliases({k: float(v) for k, v in row.items()}) for row in csv.DictReader(f)]
 
 
 def read_vtu(path):

@@ -36,32 +36,25 @@ namespace StabilizedLagrangian
           }
         return polygon;
       }
-
-      Tensor<1, 2>
-      direction(const double x, const double y)
-      {
-        Tensor<1, 2> a;
-        a[0] = x;
-        a[1] = y;
-        return a;
-      }
     } // namespace
 
     std::vector<Point<2>>
     clip_to_unit_square(std::vector<Point<2>> polygon)
     {
       return clip(std::move(polygon),
-                  {{direction(-1., 0.), 0.},
-                   {direction(1., 0.), 1.},
-                   {direction(0., -1.), 0.},
-                   {direction(0., 1.), 1.}});
+                  {{Tensor<1, 2>({-1., 0.}), 0.},
+                   {Tensor<1, 2>({1., 0.}), 1.},
+                   {Tensor<1, 2>({0., -1.}), 0.},
+                   {Tensor<1, 2>({0., 1.}), 1.}});
     }
 
     std::vector<Point<2>>
     clip_to_unit_triangle(std::vector<Point<2>> polygon)
     {
       return clip(std::move(polygon),
-                  {{direction(-1., 0.), 0.}, {direction(0., -1.), 0.}, {direction(1., 1.), 1.}});
+                  {{Tensor<1, 2>({-1., 0.}), 0.},
+                   {Tensor<1, 2>({0., -1.}), 0.},
+                   {Tensor<1, 2>({1., 1.}), 1.}});
     }
 
     double
