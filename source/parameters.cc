@@ -53,6 +53,25 @@ namespace StabilizedLagrangian
                         "Boundaries of the master surface of a second deformable body (ids or "
                         "names): each slave point is paired with the closest point of the "
                         "deformed master surface. Empty: the master is the rigid `Obstacle`.");
+      prm.declare_entry(
+          "Master surface search",
+          "distributed",
+          Patterns::Selection("distributed|replicated"),
+          "How the ranks find the master faces of their slave points (doc/formulation.md, "
+          "\"Distributed contact search\"). distributed: a rank holds only the master faces "
+          "that come within the search distance of its own slave faces, gathered from their "
+          "owners as the bodies move (memory per rank: its share and the faces near it). "
+          "replicated: every rank holds the whole master surface (memory per rank grows with "
+          "the surface; for comparison). Both give the same pairings within the search "
+          "distance.");
+      prm.declare_entry("Search distance",
+                        "0",
+                        Patterns::Double(0.),
+                        "With Master surface search = distributed: the distance (mm) from a "
+                        "rank's deformed slave faces within which it holds every master face; "
+                        "slave points further than that from the master surface are paired with "
+                        "the nearest face held, or open. 0: twice the largest diameter of the "
+                        "contact faces (slave and master).");
       prm.declare_entry("r_n",
                         "1e4",
                         Patterns::Anything(),
@@ -132,6 +151,8 @@ namespace StabilizedLagrangian
       };
       parse_boundaries("Contact boundary ids", boundary_ids, boundary_names);
       parse_boundaries("Master boundary ids", master_ids, master_names);
+      replicated_search = prm.get("Master surface search") == "replicated";
+      search_distance   = prm.get_double("Search distance");
       // a positive number, or `automatic` (times a positive factor)
       const auto parse_parameter = [&prm](const std::string &name,
                                           const std::string &unit,

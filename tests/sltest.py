@@ -143,6 +143,31 @@ end
 """
 
 
+def blocks_pressed_and_slid(press, onset, steps):
+    """For two_blocks(3, ...): the lower block's bottom held, the upper's top pressed down by
+    `press` mm until t = onset, then slid 1 mm along x until t = 1, in `steps` load steps."""
+    return f"""subsection Boundary conditions
+  subsection Dirichlet 1
+    set Boundary id = lower_bottom
+    set Components = x, y, z
+  end
+  subsection Dirichlet 2
+    set Boundary id = upper_top
+    set Components = x, y, z
+    subsection Displacement
+      set Function expression = if(t < {onset}, 0, 1*(t - {onset})/{1 - onset}); 0; -{press}*min(t/{onset}, 1)
+      set Variable names = x,y,z,t
+    end
+  end
+end
+subsection Load stepping
+  set End time = 1
+  set Number of load steps = {steps}
+  set Maximum step cuts = 5
+end
+"""
+
+
 def read_prm(path):
     """The text of a parameter file, with the relative mesh files it names made absolute (the
     tests run it from another directory)."""

@@ -23,29 +23,9 @@ import sltest
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 mu = 0.2
-scene = sltest.two_blocks(3, "two_blocks_3d.geo", mu, refinements=1) + """subsection Contact
-  set Complementarity = weighted
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    set Boundary id = lower_bottom
-    set Components = x, y, z
-  end
-  subsection Dirichlet 2
-    set Boundary id = upper_top
-    set Components = x, y, z
-    subsection Displacement
-      set Function expression = if(t < 0.2, 0, 1*(t - 0.2)/0.8); 0; -0.1*min(t/0.2, 1)
-      set Variable names = x,y,z,t
-    end
-  end
-end
-subsection Load stepping
-  set End time = 1
-  set Number of load steps = 10
-  set Maximum step cuts = 5
-end
-"""
+scene = (sltest.two_blocks(3, "two_blocks_3d.geo", mu, refinements=1) +
+         sltest.nested_set("Contact/Complementarity", "weighted") +
+         sltest.blocks_pressed_and_slid(0.1, 0.2, 10))
 iterations = {}
 for algorithm, extra in (("nested", ""), ("generalized Newton", sltest.GENERALIZED_NEWTON)):
     out = os.path.join(workdir, algorithm.split()[0])

@@ -60,14 +60,18 @@ namespace StabilizedLagrangian
       /** master surface of a second deformable body; empty: the rigid obstacle */
       std::set<types::boundary_id> master_ids;
       std::vector<std::string>     master_names; ///< resolved by the run
-      double                       r_n = 0.;     ///< the value used (set by the run when automatic)
-      double                       r_t = 0.;
-      bool                         r_n_automatic = false;
-      bool                         r_t_automatic = false;
-      double                       r_n_factor    = 1.; ///< multiplies the automatic r_n
-      double                       r_t_factor    = 1.;
-      std::string                  fe_pair;
-      bool check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
+      /** every rank holds the whole master surface (`Master surface search = replicated`) */
+      bool replicated_search = false;
+      /** `Search distance` (mm); 0: automatic */
+      double      search_distance = 0.;
+      double      r_n             = 0.; ///< the value used (set by the run when automatic)
+      double      r_t             = 0.;
+      bool        r_n_automatic   = false;
+      bool        r_t_automatic   = false;
+      double      r_n_factor      = 1.; ///< multiplies the automatic r_n
+      double      r_t_factor      = 1.;
+      std::string fe_pair;
+      bool        check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
       ContactQuadrature quadrature      = ContactQuadrature::gauss_lobatto;
       Complementarity   complementarity = Complementarity::pointwise;
 

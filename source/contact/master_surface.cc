@@ -5,8 +5,12 @@
 
 #include <stabilized_lagrangian/contact/master_surface.h>
 
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <limits>
 #include <map>
+#include <numeric>
 
 namespace StabilizedLagrangian
 {
@@ -33,6 +37,31 @@ namespace StabilizedLagrangian
         return weight;
       }
 
+      /**
+       * The bounding box of a face's nodes @p points, with room for the
+       * curvature of higher-order faces between their nodes.
+       */
+      template <int dim>
+      BoundingBox<dim>
+      padded_box(const std::vector<Point<dim>> &points)
+      {
+        BoundingBox<dim> box(points);
+        const auto &[low, high] = box.get_boundary_points();
+        box.extend(0.1 * low.distance(high));
+        return box;
+      }
+
+      /** True when the boxes @p a and @p b share a point. */
+      template <int dim>
+      bool
+      boxes_meet(const BoundingBox<dim> &a, const BoundingBox<dim> &b)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (a.lower_bound(d) > b.upper_bound(d) || b.lower_bound(d) > a.upper_bound(d))
+            return false;
+        return true;
+      }
+
       /** Squared distance from @p x to the box @p box (0 inside). */
       template <int dim>
       double
@@ -49,11 +78,17 @@ namespace StabilizedLagrangian
     template <int dim>
     MasterSurface<dim>::MasterSurface(const DoFHandler<dim>              &dof_handler,
                                       const std::set<types::boundary_id> &boundary_ids,
-                                      const MPI_Comm                      communicator)
-        : node_element(dof_handler.get_fe().degree)
+                                      const MPI_Comm                      communicator,
+                                      const bool                          replicated,
+                                      const double                        search_distance)
+        : communicator(communicator)
+        , replicated(replicated)
+        , search_distance(search_distance)
+        , node_element(dof_handler.get_fe().degree)
         , n_nodes(node_element.n_dofs_per_cell())
         , surface_dofs(dof_handler.n_dofs())
     {
+      AssertThrow(search_distance > 0., ExcInternalError());
       const FiniteElement<dim> &fe = dof_handler.get_fe();
       // the node of FE_Q<dim−1> at each face DoF's support point
       const std::vector<Point<dim - 1>> &face_points = fe.get_unit_face_support_points();
@@ -68,9 +103,7 @@ namespace StabilizedLagrangian
           AssertThrow(node_of[i] != numbers::invalid_unsigned_int, ExcInternalError());
         }
 
-      // this rank's faces: vertices and sign, then the DoFs
-      std::vector<double>                  local_geometry;
-      std::vector<types::global_dof_index> local_dofs;
+      // this rank's faces: vertices, sign and DoFs
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -79,11 +112,12 @@ namespace StabilizedLagrangian
                 boundary_ids.count(cell->face(f)->boundary_id()) > 0)
               {
                 const auto face = cell->face(f);
+                FaceRecord record;
                 face->get_dof_indices(dofs);
-                std::vector<types::global_dof_index> ordered(n_nodes * dim);
+                record.dofs.resize(n_nodes * dim);
                 for (unsigned int i = 0; i < dofs.size(); ++i)
-                  ordered[node_of[i] * dim + fe.face_system_to_component_index(i).first] = dofs[i];
-                local_dofs.insert(local_dofs.end(), ordered.begin(), ordered.end());
+                  record.dofs[node_of[i] * dim + fe.face_system_to_component_index(i).first] =
+                      dofs[i];
                 // the normal of the face's own parametrisation against the outward direction
                 Point<dim - 1> centre;
                 for (unsigned int a = 0; a < dim - 1; ++a)
@@ -95,43 +129,119 @@ namespace StabilizedLagrangian
                     vertex_weight<dim>(v, centre, gradient);
                     for (unsigned int a = 0; a < dim - 1; ++a)
                       dX[a] += gradient[a] * face->vertex(v);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      local_geometry.push_back(face->vertex(v)[d]);
+                    record.vertices.push_back(face->vertex(v));
                   }
                 Tensor<1, dim> n;
                 if constexpr (dim == 2)
                   n = Tensor<1, dim>({dX[0][1], -dX[0][0]});
                 else
                   n = cross_product_3d(dX[0], dX[1]);
-                local_geometry.push_back(n * (face->center() - cell->center()) > 0. ? 1. : -1.);
+                record.sign = n * (face->center() - cell->center()) > 0. ? 1. : -1.;
+                owned_faces.push_back(record);
               }
 
-      for (const auto &part : Utilities::MPI::all_gather(communicator, local_geometry))
-        for (unsigned int r = 0; r < part.size(); r += n_vertices * dim + 1)
-          {
-            for (unsigned int v = 0; v < n_vertices; ++v)
-              {
-                Point<dim> vertex;
-                for (unsigned int d = 0; d < dim; ++d)
-                  vertex[d] = part[r + v * dim + d];
-                face_vertices.push_back(vertex);
-              }
-            face_sign.push_back(part[r + n_vertices * dim]);
-          }
-      for (const auto &part : Utilities::MPI::all_gather(communicator, local_dofs))
-        face_dofs.insert(face_dofs.end(), part.begin(), part.end());
-      AssertThrow(face_dofs.size() == face_sign.size() * n_nodes * dim, ExcInternalError());
-      for (const auto dof : face_dofs)
-        surface_dofs.add_index(dof);
+      // global ids: the owner's offset plus the place among its faces
+      const std::vector<unsigned int> counts =
+          Utilities::MPI::all_gather(communicator, static_cast<unsigned int>(owned_faces.size()));
+      const unsigned int rank   = Utilities::MPI::this_mpi_process(communicator);
+      n_global_faces            = std::accumulate(counts.begin(), counts.end(), 0u);
+      const unsigned int offset = std::accumulate(counts.begin(), counts.begin() + rank, 0u);
+      for (unsigned int i = 0; i < owned_faces.size(); ++i)
+        owned_faces[i].id = offset + i;
+
+      if (replicated)
+        {
+          std::vector<FaceRecord> all;
+          for (const auto &part : Utilities::MPI::all_gather(communicator, pack(owned_faces)))
+            for (const auto &record : unpack(part))
+              all.push_back(record);
+          hold(all);
+        }
+    }
+
+    template <int dim>
+    typename MasterSurface<dim>::PackedFaces
+    MasterSurface<dim>::pack(const std::vector<FaceRecord> &records) const
+    {
+      PackedFaces packed;
+      for (const FaceRecord &record : records)
+        {
+          for (const Point<dim> &vertex : record.vertices)
+            for (unsigned int d = 0; d < dim; ++d)
+              packed.first.push_back(vertex[d]);
+          packed.first.push_back(record.sign);
+          const auto &[low, high] = record.box.get_boundary_points();
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              packed.first.push_back(low[d]);
+              packed.first.push_back(high[d]);
+            }
+          packed.second.push_back(record.id);
+          packed.second.insert(packed.second.end(), record.dofs.begin(), record.dofs.end());
+        }
+      return packed;
+    }
+
+    template <int dim>
+    std::vector<typename MasterSurface<dim>::FaceRecord>
+    MasterSurface<dim>::unpack(const PackedFaces &packed) const
+    {
+      const unsigned int n_doubles = n_vertices * dim + 1 + 2 * dim;
+      const unsigned int n_indices = 1 + n_nodes * dim;
+      AssertThrow(packed.first.size() % n_doubles == 0 &&
+                      packed.second.size() == packed.first.size() / n_doubles * n_indices,
+                  ExcInternalError());
+      std::vector<FaceRecord> records(packed.first.size() / n_doubles);
+      for (unsigned int r = 0; r < records.size(); ++r)
+        {
+          const double *geometry = packed.first.data() + r * n_doubles;
+          for (unsigned int v = 0; v < n_vertices; ++v)
+            {
+              Point<dim> vertex;
+              for (unsigned int d = 0; d < dim; ++d)
+                vertex[d] = geometry[v * dim + d];
+              records[r].vertices.push_back(vertex);
+            }
+          records[r].sign = geometry[n_vertices * dim];
+          Point<dim> low, high;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              low[d]  = geometry[n_vertices * dim + 1 + 2 * d];
+              high[d] = geometry[n_vertices * dim + 2 + 2 * d];
+            }
+          records[r].box                         = BoundingBox<dim>({low, high});
+          const types::global_dof_index *indices = packed.second.data() + r * n_indices;
+          records[r].id                          = static_cast<unsigned int>(indices[0]);
+          records[r].dofs.assign(indices + 1, indices + n_indices);
+        }
+      return records;
+    }
+
+    template <int dim>
+    void
+    MasterSurface<dim>::hold(const std::vector<FaceRecord> &records)
+    {
+      for (const FaceRecord &record : records)
+        {
+          AssertThrow(slots.count(record.id) == 0, ExcInternalError());
+          slots[record.id] = face_ids.size();
+          face_ids.push_back(record.id);
+          face_vertices.insert(face_vertices.end(), record.vertices.begin(), record.vertices.end());
+          face_sign.push_back(record.sign);
+          face_dofs.insert(face_dofs.end(), record.dofs.begin(), record.dofs.end());
+          for (const auto dof : record.dofs)
+            surface_dofs.add_index(dof);
+        }
       surface_dofs.compress();
+      node_displacements.resize(face_ids.size() * n_nodes);
 
-      // faces sharing a node
+      // held faces sharing a node
       std::map<types::global_dof_index, std::vector<unsigned int>> faces_at;
-      for (unsigned int f = 0; f < n_faces(); ++f)
+      for (unsigned int f = 0; f < face_ids.size(); ++f)
         for (unsigned int k = 0; k < n_nodes; ++k)
-          faces_at[face_dofs[(f * n_nodes + k) * dim]].push_back(f);
-      face_neighbours.resize(n_faces());
-      for (unsigned int f = 0; f < n_faces(); ++f)
+          faces_at[face_dofs[(f * n_nodes + k) * dim]].push_back(face_ids[f]);
+      face_neighbours.assign(face_ids.size(), {});
+      for (unsigned int f = 0; f < face_ids.size(); ++f)
         {
           std::set<unsigned int> near;
           for (unsigned int k = 0; k < n_nodes; ++k)
@@ -139,7 +249,105 @@ namespace StabilizedLagrangian
               near.insert(g);
           face_neighbours[f].assign(near.begin(), near.end());
         }
-      node_displacements.assign(n_faces() * n_nodes, Tensor<1, dim>());
+    }
+
+    template <int dim>
+    unsigned int
+    MasterSurface<dim>::slot(const unsigned int face) const
+    {
+      const auto found = slots.find(face);
+      AssertThrow(found != slots.end(),
+                  ExcMessage("master face " + std::to_string(face) + " is not held here"));
+      return found->second;
+    }
+
+    template <int dim>
+    BoundingBox<dim>
+    MasterSurface<dim>::deformed_box(const FaceRecord                    &record,
+                                     const TrilinosWrappers::MPI::Vector *u) const
+    {
+      const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
+      std::vector<Point<dim>>            points;
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        {
+          Point<dim>         X;
+          Tensor<1, dim - 1> gradient;
+          for (unsigned int v = 0; v < n_vertices; ++v)
+            X += vertex_weight<dim>(v, node_points[k], gradient) * record.vertices[v];
+          if (u != nullptr)
+            for (unsigned int d = 0; d < dim; ++d)
+              X[d] += (*u)(record.dofs[k * dim + d]);
+          points.push_back(X);
+        }
+      return padded_box(points);
+    }
+
+    template <int dim>
+    bool
+    MasterSurface<dim>::gather_faces_near(const std::vector<BoundingBox<dim>> &region,
+                                          const TrilinosWrappers::MPI::Vector *u)
+    {
+      if (replicated)
+        return false;
+      // every rank's slave region, 2 d around
+      std::vector<double> corners;
+      for (const auto &box : region)
+        for (const Point<dim> &corner :
+             {box.get_boundary_points().first, box.get_boundary_points().second})
+          for (unsigned int d = 0; d < dim; ++d)
+            corners.push_back(corner[d]);
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> regions;
+      const auto all_corners = Utilities::MPI::all_gather(communicator, corners);
+      for (unsigned int rank = 0; rank < all_corners.size(); ++rank)
+        for (unsigned int b = 0; b < all_corners[rank].size(); b += 2 * dim)
+          {
+            Point<dim> low, high;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                low[d]  = all_corners[rank][b + d];
+                high[d] = all_corners[rank][b + dim + d];
+              }
+            BoundingBox<dim> box({low, high});
+            box.extend(2. * search_distance);
+            regions.emplace_back(box, rank);
+          }
+      const auto region_tree = pack_rtree(regions);
+
+      // this rank's faces to every rank whose region they meet
+      namespace bgi = boost::geometry::index;
+      std::map<unsigned int, std::vector<FaceRecord>> to_ranks;
+      for (FaceRecord &record : owned_faces)
+        {
+          record.box = deformed_box(record, u);
+          std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+          region_tree.query(bgi::intersects(record.box), std::back_inserter(hits));
+          std::set<unsigned int> ranks;
+          for (const auto &hit : hits)
+            ranks.insert(hit.second);
+          for (const unsigned int rank : ranks)
+            to_ranks[rank].push_back(record);
+        }
+      std::map<unsigned int, PackedFaces> to_send;
+      for (const auto &[rank, records] : to_ranks)
+        to_send[rank] = pack(records);
+
+      // a face within d of the region that is not held yet: take all those within 2 d
+      std::vector<FaceRecord> fresh;
+      bool                    missing = false;
+      for (const auto &[rank, packed] : Utilities::MPI::some_to_some(communicator, to_send))
+        for (const FaceRecord &record : unpack(packed))
+          if (slots.count(record.id) == 0)
+            {
+              fresh.push_back(record);
+              for (BoundingBox<dim> box : region)
+                {
+                  box.extend(search_distance);
+                  missing = missing || boxes_meet(box, record.box);
+                }
+            }
+      if (missing)
+        hold(fresh);
+      return Utilities::MPI::logical_or(missing, communicator);
     }
 
     template <int dim>
@@ -147,9 +355,9 @@ namespace StabilizedLagrangian
     MasterSurface<dim>::update_configuration(const TrilinosWrappers::MPI::Vector &u)
     {
       std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
-      boxes.reserve(n_faces());
+      boxes.reserve(face_ids.size());
       const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
-      for (unsigned int f = 0; f < n_faces(); ++f)
+      for (unsigned int f = 0; f < face_ids.size(); ++f)
         {
           std::vector<Point<dim>> points;
           for (unsigned int k = 0; k < n_nodes; ++k)
@@ -159,11 +367,7 @@ namespace StabilizedLagrangian
                 u_k[d] = u(face_dofs[(f * n_nodes + k) * dim + d]);
               points.push_back(reference_point(f, node_points[k]) + u_k);
             }
-          BoundingBox<dim> box(points);
-          // room for the curvature of higher-order faces between their nodes
-          const auto &[low, high] = box.get_boundary_points();
-          box.extend(0.1 * low.distance(high));
-          boxes.emplace_back(box, f);
+          boxes.emplace_back(padded_box(points), f);
         }
       tree = pack_rtree(boxes);
     }
@@ -225,13 +429,22 @@ namespace StabilizedLagrangian
     Pairing<dim>
     MasterSurface<dim>::project(const Point<dim> &x) const
     {
-      namespace bgi                = boost::geometry::index;
+      namespace bgi = boost::geometry::index;
+      if (face_ids.empty())
+        {
+          // no master face within the search distance: an open pairing that far
+          Pairing<dim> pairing;
+          pairing.normal[dim - 1] = 1.;
+          pairing.master_point    = x - search_distance * pairing.normal;
+          pairing.tangents        = tangent_basis(pairing.normal);
+          return pairing;
+        }
       double         best_distance = std::numeric_limits<double>::max();
       unsigned int   best_face     = 0;
       Point<dim - 1> best_xi;
       // candidates by increasing distance to their boxes, until no box is
       // closer than the best projection found
-      for (auto it = tree.qbegin(bgi::nearest(x, n_faces())); it != tree.qend(); ++it)
+      for (auto it = tree.qbegin(bgi::nearest(x, n_held_faces())); it != tree.qend(); ++it)
         {
           if (std::sqrt(squared_distance(it->first, x)) > best_distance)
             break;
@@ -262,22 +475,21 @@ namespace StabilizedLagrangian
                 break;
             }
           const double distance = position(face, xi, dx).distance(x);
-          if (distance < best_distance)
+          // ties (a shared vertex or edge) to the smaller id, whatever the order faces are held in
+          if (distance < best_distance ||
+              (distance == best_distance && face_ids[face] < face_ids[best_face]))
             {
               best_distance = distance;
               best_face     = face;
               best_xi       = xi;
             }
         }
-      AssertThrow(best_distance < std::numeric_limits<double>::max(),
-                  ExcMessage("the master surface has no faces"));
-
       Pairing<dim>   pairing;
       Tensor<1, dim> dx[dim - 1];
       pairing.master_point           = position(best_face, best_xi, dx);
       pairing.normal                 = normal(best_face, dx);
       pairing.tangents               = tangent_basis(pairing.normal);
-      pairing.master_face            = static_cast<int>(best_face);
+      pairing.master_face            = static_cast<int>(face_ids[best_face]);
       pairing.master_reference_point = best_xi;
       return pairing;
     }
@@ -325,11 +537,13 @@ namespace StabilizedLagrangian
                                      std::vector<unsigned int>            &components,
                                      std::vector<double>                  &values) const
     {
-      const unsigned int    face = pairing.master_face;
-      const Point<dim - 1> &xi   = pairing.master_reference_point;
       dofs.clear();
       components.clear();
       values.clear();
+      if (pairing.master_face < 0)
+        return;
+      const unsigned int    face = slot(pairing.master_face);
+      const Point<dim - 1> &xi   = pairing.master_reference_point;
       for (unsigned int k = 0; k < n_nodes; ++k)
         {
           const double N = node_element.shape_value(k, xi);
@@ -348,6 +562,8 @@ namespace StabilizedLagrangian
                                         std::vector<Tensor<1, dim - 1>> &gradients) const
     {
       gradients.clear();
+      if (pairing.master_face < 0)
+        return;
       for (unsigned int k = 0; k < n_nodes; ++k)
         for (unsigned int d = 0; d < dim; ++d)
           gradients.push_back(node_element.shape_grad(k, pairing.master_reference_point));
@@ -362,7 +578,7 @@ namespace StabilizedLagrangian
     {
       if (pairing.master_face < 0)
         return Tensor<1, dim>();
-      const unsigned int    face = pairing.master_face;
+      const unsigned int    face = slot(pairing.master_face);
       const Point<dim - 1> &xi   = pairing.master_reference_point;
       const Tensor<1, dim>  now  = displacement(face, xi, u);
       pairing.master_point       = reference_point(face, xi) + now;
@@ -406,6 +622,22 @@ namespace StabilizedLagrangian
       if constexpr (dim == 3)
         pairing.surface_curvature[1][0] = pairing.surface_curvature[0][1];
       return now - displacement(face, xi, step_start);
+    }
+
+    template <int dim>
+    ArrayView<const types::global_dof_index>
+    MasterSurface<dim>::face_dof_indices(const unsigned int face) const
+    {
+      return {face_dofs.data() + slot(face) * n_nodes * dim, n_nodes * dim};
+    }
+
+    template <int dim>
+    const std::vector<unsigned int> &
+    MasterSurface<dim>::faces_near(const Pairing<dim> &pairing) const
+    {
+      if (pairing.master_face < 0)
+        return no_faces;
+      return face_neighbours[slot(pairing.master_face)];
     }
 
     template class MasterSurface<2>;

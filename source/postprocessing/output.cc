@@ -425,7 +425,7 @@ namespace StabilizedLagrangian
                                         : FESystem<dim>(FE_Q<dim>(1), n_components);
     DoFHandler<dim>     field_dofs(triangulation);
     field_dofs.distribute_dofs(fe_fields);
-    partner->update_configuration(ghosted_solution);
+    update_partner_configuration();
     TrilinosWrappers::MPI::Vector vertex_values;
     std::vector<double>           profile;
     sample_contact_fields(fields, field_dofs, vertex_values, profile);

@@ -252,7 +252,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::update_pairings(const bool resegment)
   {
-    partner->update_configuration(ghosted_solution);
+    update_partner_configuration();
     const bool   new_points = resegment && update_segments();
     PointRefresh pairing;
     pairing.pairing = true;
@@ -264,7 +264,7 @@ namespace StabilizedLagrangian
         update_friction_thresholds();
         update_statuses();
       }
-    if (sparsity_ready && pairings_left_sparsity())
+    if (sparsity_ready && (sparsity_stale || pairings_left_sparsity()))
       setup_sparsity();
   }
 

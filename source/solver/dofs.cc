@@ -6,6 +6,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 
+#include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
@@ -87,13 +88,29 @@ namespace StabilizedLagrangian
       partner = std::make_unique<Contact::RigidObstacle<dim>>(*obstacle, obstacle_motion);
     else
       {
-        // every rank sees the whole master surface (its DoFs are ghosts)
-        auto master_surface = std::make_unique<Contact::MasterSurface<dim>>(
-            dof_handler_u, contact_parameters.master_ids, mpi_communicator);
+        // a rank holds the master faces near its slave faces (their DoFs are ghosts)
+        double search_distance = contact_parameters.search_distance;
+        if (search_distance == 0.)
+          {
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (is_slave_or_master_face(cell, f))
+                    search_distance = std::max(search_distance, 2. * cell->face(f)->diameter());
+            search_distance = Utilities::MPI::max(search_distance, mpi_communicator);
+          }
+        auto master_surface =
+            std::make_unique<Contact::MasterSurface<dim>>(dof_handler_u,
+                                                          contact_parameters.master_ids,
+                                                          mpi_communicator,
+                                                          contact_parameters.replicated_search,
+                                                          search_distance);
         if (master_surface->n_faces() == 0)
           throw InputError("Contact/Master boundary ids: the master boundary has no faces.");
         partner = std::move(master_surface);
+        partner->gather_faces_near(slave_search_region(nullptr), nullptr);
       }
+    partner_dof_growths = 0;
     locally_relevant.add_indices(partner->dofs());
     // every rank couples to the rigid plates' reference DoFs
     find_plate_dofs();
@@ -111,6 +128,28 @@ namespace StabilizedLagrangian
       // trace; otherwise enough points to integrate ψ φ·n exactly
       contact_quadrature = face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
 
+    setup_constraints();
+
+    system_rhs.reinit(locally_owned, mpi_communicator);
+    solution.reinit(locally_owned, mpi_communicator);
+    ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
+    step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
+    internal_force.reinit(locally_owned, mpi_communicator);
+    contact_residual.reinit(locally_owned, mpi_communicator);
+    external_force.reinit(locally_owned, mpi_communicator);
+    multiplier_length_weights.reinit(locally_owned, mpi_communicator);
+    owned_multiplier_components = locally_owned_multiplier_components();
+    residual_scaling.reinit(locally_owned, mpi_communicator);
+    residual_scaling = 1.;
+    for (const auto &[row, component] : owned_multiplier_components)
+      residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
+    residual_scaling.compress(VectorOperation::insert);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::setup_constraints()
+  {
     hanging_constraints.clear();
     hanging_constraints.reinit(locally_relevant);
     DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
@@ -131,21 +170,65 @@ namespace StabilizedLagrangian
     newton_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
     newton_constraints.close();
+  }
 
-    system_rhs.reinit(locally_owned, mpi_communicator);
-    solution.reinit(locally_owned, mpi_communicator);
-    ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
-    step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
-    internal_force.reinit(locally_owned, mpi_communicator);
-    contact_residual.reinit(locally_owned, mpi_communicator);
-    external_force.reinit(locally_owned, mpi_communicator);
-    multiplier_length_weights.reinit(locally_owned, mpi_communicator);
-    owned_multiplier_components = locally_owned_multiplier_components();
-    residual_scaling.reinit(locally_owned, mpi_communicator);
-    residual_scaling = 1.;
-    for (const auto &[row, component] : owned_multiplier_components)
-      residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
-    residual_scaling.compress(VectorOperation::insert);
+  template <int dim>
+  std::vector<BoundingBox<dim>>
+  ContactProblem<dim>::slave_search_region(const TrilinosWrappers::MPI::Vector *u) const
+  {
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (is_contact_face(cell, f))
+            {
+              const auto              face = cell->face(f);
+              std::vector<Point<dim>> vertices;
+              for (const unsigned int v : face->vertex_indices())
+                {
+                  Point<dim> x = face->vertex(v);
+                  if (u != nullptr)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      x[d] += (*u)(face->vertex_dof_index(v, d));
+                  vertices.push_back(x);
+                }
+              boxes.emplace_back(BoundingBox<dim>(vertices), boxes.size());
+            }
+    if (boxes.empty())
+      return {};
+    // a few boxes around them all, from the top of an R-tree
+    return extract_rtree_level(pack_rtree(boxes), 0);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::update_partner_configuration()
+  {
+    if (partner->gather_faces_near(slave_search_region(&ghosted_solution), &ghosted_solution))
+      follow_partner_dofs();
+    partner->update_configuration(ghosted_solution);
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::follow_partner_dofs()
+  {
+    TimerOutput::Scope scope(timer, "sparsity pattern");
+    locally_relevant.add_indices(partner->dofs());
+    locally_relevant.compress();
+    setup_constraints();
+    TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
+    for (auto *vector : {&ghosted_solution, &step_start, &dirichlet_increment})
+      if (vector->size() > 0)
+        {
+          for (const auto index : locally_owned)
+            owned(index) = (*vector)(index);
+          owned.compress(VectorOperation::insert);
+          vector->reinit(locally_owned, locally_relevant, mpi_communicator);
+          *vector = owned;
+        }
+    sparsity_stale = true;
+    ++partner_dof_growths;
   }
 
   template <int dim>
@@ -729,6 +812,7 @@ namespace StabilizedLagrangian
             linear_solver_parameters.maximum_iterations);
       }
     sparsity_ready = true;
+    sparsity_stale = false;
   }
 
   template <int dim>
@@ -753,7 +837,12 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                       \
-  template void                ContactProblem<dim>::setup_dofs();                                 \
+  template void                          ContactProblem<dim>::setup_dofs();                       \
+  template void                          ContactProblem<dim>::setup_constraints();                \
+  template std::vector<BoundingBox<dim>> ContactProblem<dim>::slave_search_region(                \
+      const TrilinosWrappers::MPI::Vector *) const;                                               \
+  template void                ContactProblem<dim>::update_partner_configuration();               \
+  template void                ContactProblem<dim>::follow_partner_dofs();                        \
   template Quadrature<dim - 1> ContactProblem<dim>::face_nodes(const unsigned int) const;         \
   template void                ContactProblem<dim>::add_multiplier_hanging_node_constraints(      \
       AffineConstraints<double> &) const;                                          \

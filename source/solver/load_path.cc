@@ -475,8 +475,12 @@ namespace StabilizedLagrangian
         separator = ", ";
       }
     block << "\n  memory:     peak " << static_cast<long>(std::round(memory))
-          << " MiB resident on the largest rank\n"
-          << "  error:      estimated " << std::scientific << std::setprecision(2)
+          << " MiB resident on the largest rank\n";
+    if (partner->n_faces() > 0)
+      block << "  search:     " << partner->n_faces() << " master faces, at most "
+            << Utilities::MPI::max(partner->n_held_faces(), mpi_communicator)
+            << " held on a rank, gathered anew " << partner_dof_growths << " time(s)\n";
+    block << "  error:      estimated " << std::scientific << std::setprecision(2)
           << last_step.estimated_error << " sqrt(N mm) in the energy norm, " << std::fixed
           << 100. * last_step.relative_error() << " % of the solution's (contact part "
           << std::scientific << last_step.estimated_contact_error
@@ -504,6 +508,7 @@ namespace StabilizedLagrangian
     // collective, before rank 0 alone writes
     const std::map<std::string, double> slowest = slowest_sections();
     const double                        memory  = peak_memory();
+    const unsigned int held = Utilities::MPI::max(partner->n_held_faces(), mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
@@ -519,6 +524,8 @@ namespace StabilizedLagrangian
         linear_solver_parameters.iterative || linear_solver_parameters.automatic;
     if (krylov_columns)
       file << ",krylov_iterations,iterative_fallbacks";
+    if (partner->n_faces() > 0)
+      file << ",master_faces,master_faces_held_max,master_search_growths";
     for (const auto &entry : slowest)
       file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
     file << '\n'
@@ -535,6 +542,8 @@ namespace StabilizedLagrangian
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)
       file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks;
+    if (partner->n_faces() > 0)
+      file << ',' << partner->n_faces() << ',' << held << ',' << partner_dof_growths;
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';

@@ -287,9 +287,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              (contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0 ||
-               contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0))
+          if (is_slave_or_master_face(cell, f))
             E = std::min(E, material_of(cell).youngs_modulus());
     E = Utilities::MPI::min(E, mpi_communicator);
     if (contact_parameters.r_n_automatic)

@@ -16,6 +16,7 @@
 
 #include <stabilized_lagrangian/contact/partner.h>
 
+#include <map>
 #include <set>
 #include <vector>
 
@@ -31,12 +32,30 @@ namespace StabilizedLagrangian
      * deformed configuration, and the closest-point projection of slave points
      * onto them.
      *
-     * Every rank holds the whole master surface (its reference geometry and
-     * the global indices of its displacement DoFs), gathered once per mesh,
-     * so a slave point is paired with its closest master face wherever that
-     * face's cell lives; the deformed positions come from a vector whose
-     * ghost set includes dofs(). Memory per rank is O(master faces). The
-     * search runs on an R-tree of the deformed faces' bounding boxes.
+     * Each rank owns the master faces of its own cells. A slave point must be
+     * paired with its closest master face wherever that face's cell lives, so
+     * a rank holds copies of the faces it may be paired with (their reference
+     * geometry and the global indices of their displacement DoFs); the deformed
+     * positions come from a vector whose ghost set includes dofs(). Which faces
+     * a rank holds (doc/formulation.md, "Distributed contact search"):
+     * - distributed (the default): the faces whose deformed bounding boxes
+     *   come within the search distance d of this rank's slave faces, gathered
+     *   by gather_faces_near() from their owners with one exchange of the
+     *   ranks' slave regions (a few boxes each) and point-to-point messages;
+     *   when a needed face is missing, the rank takes all those within 2 d, so
+     *   that the set, and the ghosts that follow it, grow seldom. A rank never
+     *   drops a face before the mesh changes. Memory per rank: this rank's
+     *   share plus the master faces near its slave faces;
+     * - replicated: every rank holds every face, gathered once per mesh
+     *   (memory per rank O(all master faces)), the reference to compare with.
+     * The closest point within d of a slave face is among the held faces, so
+     * both give the same pairings there; a slave point further than d from
+     * every held face is far from contact and paired with the nearest held
+     * face, or with none (an open pairing d away, without DoFs).
+     *
+     * The search runs on an R-tree of the held faces' deformed bounding boxes.
+     * Faces are named by global ids (their owner's offset plus their place
+     * among its faces), the same on every rank.
      *
      * A face is described by its vertices (the reference map X(ξ) is
      * multilinear in them, as the cells' mapping) and by its displacement
@@ -46,21 +65,31 @@ namespace StabilizedLagrangian
     {
     public:
       /**
-       * @brief Collect the faces of @p dof_handler's mesh on the boundaries
-       * @p boundary_ids from every rank (collective).
+       * @brief Collect this rank's faces of @p dof_handler's mesh on the
+       * boundaries @p boundary_ids (collective); with @p replicated, every
+       * rank takes every rank's faces at once. @p search_distance: d > 0.
        */
       MasterSurface(const DoFHandler<dim>              &dof_handler,
                     const std::set<types::boundary_id> &boundary_ids,
-                    const MPI_Comm                      communicator);
+                    const MPI_Comm                      communicator,
+                    const bool                          replicated,
+                    const double                        search_distance);
 
       /** @brief Number of master faces (on all ranks). */
       unsigned int
-      n_faces() const
+      n_faces() const override
       {
-        return face_sign.size();
+        return n_global_faces;
       }
 
-      /** @brief The displacement DoFs of the whole master surface (in the DoFHandler's numbering).
+      /** @brief Number of master faces this rank holds. */
+      unsigned int
+      n_held_faces() const override
+      {
+        return face_ids.size();
+      }
+
+      /** @brief The displacement DoFs of the faces this rank holds (in the DoFHandler's numbering).
        */
       const IndexSet &
       dofs() const override
@@ -68,10 +97,14 @@ namespace StabilizedLagrangian
         return surface_dofs;
       }
 
+      bool
+      gather_faces_near(const std::vector<BoundingBox<dim>> &region,
+                        const TrilinosWrappers::MPI::Vector *u) override;
+
       /**
-       * @brief Deform the surface by the displacement in @p u (its first block
-       * numbered as the DoFHandler; ghosts must include dofs()) and rebuild the
-       * search tree.
+       * @brief Deform the held faces by the displacement in @p u (its first
+       * block numbered as the DoFHandler; ghosts must include dofs()) and
+       * rebuild the search tree.
        */
       void
       update_configuration(const TrilinosWrappers::MPI::Vector &u) override;
@@ -110,8 +143,8 @@ namespace StabilizedLagrangian
              const Point<dim> &) const override;
 
       /**
-       * @brief The displacement DoFs of face @p face and their shape values at
-       * @p xi: DoF dofs[i] moves the point by values[i] e_{components[i]}.
+       * @brief The displacement DoFs of the pairing's face and their shape
+       * values at its ξ: DoF dofs[i] moves the point by values[i] e_{components[i]}.
        */
       void
       shape_values(const Pairing<dim>                   &pairing,
@@ -122,16 +155,16 @@ namespace StabilizedLagrangian
       void
       shape_gradients(const Pairing<dim>              &pairing,
                       std::vector<Tensor<1, dim - 1>> &gradients) const override;
-      /** @brief The displacement DoFs of face @p face (node-major, dim per node). */
+      /** @brief The displacement DoFs of the held face with global id @p face (node-major, dim per
+       * node). */
       ArrayView<const types::global_dof_index>
-      face_dof_indices(const unsigned int face) const override
-      {
-        return {face_dofs.data() + face * n_nodes * dim, n_nodes * dim};
-      }
+      face_dof_indices(const unsigned int face) const override;
 
       ArrayView<const types::global_dof_index>
       pairing_dof_indices(const Pairing<dim> &pairing) const override
       {
+        if (pairing.master_face < 0)
+          return {};
         return face_dof_indices(pairing.master_face);
       }
 
@@ -148,47 +181,91 @@ namespace StabilizedLagrangian
         return n_vertices;
       }
 
-      /** @brief The faces sharing a node with the paired face, itself included. */
+      /** @brief The held faces sharing a node with the paired face, itself included (global ids).
+       */
       const std::vector<unsigned int> &
-      faces_near(const Pairing<dim> &pairing) const override
-      {
-        return face_neighbours[pairing.master_face];
-      }
+      faces_near(const Pairing<dim> &pairing) const override;
 
     private:
+      /** A face as its owner describes it to the ranks that hold a copy. */
+      struct FaceRecord
+      {
+        unsigned int                         id;
+        std::vector<Point<dim>>              vertices;
+        double                               sign;
+        std::vector<types::global_dof_index> dofs;
+        /** in transit: its deformed bounding box */
+        BoundingBox<dim> box;
+      };
+
+      /** Faces packed for a message: their geometry and boxes, their ids and DoFs. */
+      using PackedFaces = std::pair<std::vector<double>, std::vector<types::global_dof_index>>;
+
+      PackedFaces
+      pack(const std::vector<FaceRecord> &records) const;
+
+      std::vector<FaceRecord>
+      unpack(const PackedFaces &packed) const;
+
+      /** @brief Hold the faces @p records (not held yet), and index all held faces anew. */
+      void
+      hold(const std::vector<FaceRecord> &records);
+
+      /** @brief Where the held face with global id @p face is stored. */
+      unsigned int
+      slot(const unsigned int face) const;
+
       /**
-       * @brief Displacement of @p u at the reference point @p xi of face @p face.
+       * @brief Bounding box of the face @p record displaced by @p u at its
+       * nodes (null: undisplaced), with room for the curvature of
+       * higher-order faces between their nodes.
+       */
+      BoundingBox<dim>
+      deformed_box(const FaceRecord &record, const TrilinosWrappers::MPI::Vector *u) const;
+
+      /**
+       * @brief Displacement of @p u at the reference point @p xi of held face @p face.
        */
       Tensor<1, dim>
       displacement(const unsigned int                   face,
                    const Point<dim - 1>                &xi,
                    const TrilinosWrappers::MPI::Vector &u) const;
 
-      /** @brief Reference position X(ξ) of @p xi on face @p face. */
+      /** @brief Reference position X(ξ) of @p xi on held face @p face. */
       Point<dim>
       reference_point(const unsigned int face, const Point<dim - 1> &xi) const;
-      /** Current position and the derivatives ∂x/∂ξ_a at @p xi on face @p face. */
+      /** Current position and the derivatives ∂x/∂ξ_a at @p xi on held face @p face. */
       Point<dim>
       position(const unsigned int    face,
                const Point<dim - 1> &xi,
                Tensor<1, dim> (&dx)[dim - 1]) const;
 
-      /** Outward unit normal from the derivatives ∂x/∂ξ_a of face @p face. */
+      /** Outward unit normal from the derivatives ∂x/∂ξ_a of held face @p face. */
       Tensor<1, dim>
       normal(const unsigned int face, const Tensor<1, dim> (&dx)[dim - 1]) const;
 
       static constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_face;
 
+      MPI_Comm      communicator;
+      bool          replicated;
+      double        search_distance;
       FE_Q<dim - 1> node_element;
       unsigned int  n_nodes;
-      /** per face: its vertices; its nodes' DoFs (node-major, dim per node); ±1 orienting the
-       * normal */
+      unsigned int  n_global_faces;
+      /** this rank's own faces */
+      std::vector<FaceRecord> owned_faces;
+      /** per held face (by slot): its global id; its vertices; its nodes' DoFs
+       * (node-major, dim per node); ±1 orienting the normal; the held faces
+       * sharing a node with it (global ids) */
+      std::vector<unsigned int>              face_ids;
+      std::map<unsigned int, unsigned int>   slots;
       std::vector<Point<dim>>                face_vertices;
       std::vector<types::global_dof_index>   face_dofs;
       std::vector<double>                    face_sign;
       std::vector<std::vector<unsigned int>> face_neighbours;
       IndexSet                               surface_dofs;
-      /** current node displacements (node-major per face) */
+      const std::vector<unsigned int>        no_faces;
+      /** current node displacements (node-major per held face) */
       std::vector<Tensor<1, dim>>                      node_displacements;
       RTree<std::pair<BoundingBox<dim>, unsigned int>> tree;
     };

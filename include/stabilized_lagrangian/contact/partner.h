@@ -69,6 +69,23 @@ namespace StabilizedLagrangian
        */
       virtual void
       update_configuration(const TrilinosWrappers::MPI::Vector &u) = 0;
+
+      /**
+       * @brief Collective: make sure this rank holds the partner's faces that
+       * come within the search distance of @p region (the boxes around this
+       * rank's deformed slave faces), in the configuration of @p u (null: the
+       * reference configuration; u's ghosts must include this rank's own
+       * faces' DoFs). True on every rank when some rank took new faces, so
+       * that dofs() grew and the ghosts of the vectors must follow.
+       */
+      virtual bool
+      gather_faces_near(const std::vector<BoundingBox<dim>> &region,
+                        const TrilinosWrappers::MPI::Vector *u)
+      {
+        (void)region;
+        (void)u;
+        return false;
+      }
       /**
        * @brief The load step from @p start to @p now: a moving partner takes
        * its position at @p now, and follow() measures its motion from @p start.
@@ -97,6 +114,20 @@ namespace StabilizedLagrangian
       /** @brief The partner's displacement DoFs (in the DoFHandler's numbering). */
       virtual const IndexSet &
       dofs() const = 0;
+
+      /** @brief Number of the partner's faces (on all ranks; 0: it has none). */
+      virtual unsigned int
+      n_faces() const
+      {
+        return 0;
+      }
+
+      /** @brief Number of the partner's faces this rank holds (Contact::MasterSurface). */
+      virtual unsigned int
+      n_held_faces() const
+      {
+        return 0;
+      }
 
       /** @brief The displacement DoFs of the partner's face @p face (node-major, dim per node). */
       virtual ArrayView<const types::global_dof_index>

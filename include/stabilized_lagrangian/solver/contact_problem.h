@@ -1030,6 +1030,29 @@ namespace StabilizedLagrangian
     // --- dofs.cc: DoFs, multiplier numbering, constraints, sparsity ---
     void
     setup_dofs();
+    /** The hanging-node and Newton constraints on the locally relevant DoFs (collective). */
+    void
+    setup_constraints();
+    /**
+     * Boxes around this rank's slave contact faces, displaced by @p u at their
+     * vertices (null: in the reference configuration): where the partner's
+     * faces must be held for the search (Contact::Partner::gather_faces_near()).
+     */
+    std::vector<BoundingBox<dim>>
+    slave_search_region(const TrilinosWrappers::MPI::Vector *u) const;
+    /**
+     * Collective: the partner gathers the faces near this rank's slave faces
+     * in the configuration of ghosted_solution (following its DoFs with the
+     * ghosts where it took new ones) and deforms them.
+     */
+    void
+    update_partner_configuration();
+    /**
+     * Collective: the ghosts of the vectors, the constraints and (at the next
+     * pairing) the sparsity pattern grow by the partner's DoFs, the values kept.
+     */
+    void
+    follow_partner_dofs();
     void
     setup_multiplier_numbering();
     /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
@@ -1046,6 +1069,15 @@ namespace StabilizedLagrangian
     {
       return cell->face(f)->at_boundary() &&
              contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
+    }
+    /** Whether face @p f of @p cell lies on Γc or on the master surface of a second body. */
+    template <typename CellIterator>
+    bool
+    is_slave_or_master_face(const CellIterator &cell, const unsigned int f) const
+    {
+      return is_contact_face(cell, f) ||
+             (cell->face(f)->at_boundary() &&
+              contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0);
     }
     /**
      * Call f(dof, i) for each multiplier DoF on a contact face of the
@@ -1627,8 +1659,12 @@ namespace StabilizedLagrangian
      */
     std::unique_ptr<Contact::Partner<dim>> partner;
     /** per contact face: the master faces whose DoFs the sparsity pattern couples to it */
-    std::vector<std::vector<unsigned int>>   sparsity_master_faces;
-    bool                                     sparsity_ready = false;
+    std::vector<std::vector<unsigned int>> sparsity_master_faces;
+    bool                                   sparsity_ready = false;
+    /** the locally relevant DoFs grew since the sparsity pattern was built */
+    bool sparsity_stale = false;
+    /** how often the ghosts grew by the partner's DoFs on this mesh (follow_partner_dofs()) */
+    unsigned int                             partner_dof_growths = 0;
     std::unique_ptr<FrictionLaws::Interface> friction_law;
     /** The contact zones (`Contact/Zone <name>`): name, boundary entries, own friction law. */
     struct ContactZone
