@@ -37,15 +37,8 @@ def search(mode, distance=None):
 
 def run(name, scene, mode, distance=None):
     out = os.path.join(workdir, name, mode if distance is None else f"{mode}-{distance}")
-    code, log = sltest.run(executable, scene + search(mode, distance) + """
-subsection Output
-  set Output directory = output
-  set Write vtu = false
-end
-""", out, ranks=2, expect_success=False)
-    check(code == 0, f"{name}, {mode} search: exit code {code}")
-    if code != 0:
-        print(log[-3000:])
+    if not sltest.run_checked(executable, scene + search(mode, distance), out, check,
+                              f"{name}, {mode} search", ranks=2):
         return None
     output = os.path.join(out, "output")
     profiles = sorted(p for p in os.listdir(output) if p.startswith("profile-"))

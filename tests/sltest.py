@@ -69,10 +69,10 @@ end
 QUIET_OUTPUT = "\nsubsection Output\n  set Output directory = output\n  set Write vtu = false\nend\n"
 
 
-def run_checked(executable, prm_text, workdir, check, name, environment=None):
-    """Run prm_text in workdir (output in workdir/output, no vtu); check that it exits with 0,
-    printing the end of its log if not; return whether it did."""
-    code, log = run(executable, prm_text + QUIET_OUTPUT, workdir, expect_success=False,
+def run_checked(executable, prm_text, workdir, check, name, environment=None, ranks=1):
+    """Run prm_text in workdir (output in workdir/output, no vtu) on `ranks` ranks; check that
+    it exits with 0, printing the end of its log if not; return whether it did."""
+    code, log = run(executable, prm_text + QUIET_OUTPUT, workdir, ranks=ranks, expect_success=False,
                     environment=environment)
     check(code == 0, f"{name}: exit code {code}")
     if code != 0:

@@ -48,10 +48,7 @@ def with_stiffness(k):
 def run(name, text, ranks=1):
     """Statistics rows and last profile of a run, or None if it failed."""
     out = os.path.join(workdir, name)
-    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, out, ranks=ranks, expect_success=False)
-    check(code == 0, f"{name}: exit code {code}")
-    if code != 0:
-        print(log[-3000:])
+    if not sltest.run_checked(executable, text, out, check, name, ranks=ranks):
         return None
     return (sltest.read_csv(os.path.join(out, "output", "statistics.csv")),
             sltest.last_profile(os.path.join(out, "output")))

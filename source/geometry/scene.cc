@@ -102,8 +102,11 @@ namespace StabilizedLagrangian
                 for (unsigned int c = 0; c < face->n_children(); ++c)
                   join(face->child(c));
             };
+        // (not from the artificial cells of a distributed mesh: they stand coarser
+        // than the mesh is there, and their faces would pull in faces of the zone's
+        // neighbours that lie outside it)
         for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->level() > 0)
+          if (cell->level() > 0 && !cell->is_artificial())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == zone)
                 join(cell->parent()->face(f));

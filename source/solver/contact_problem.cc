@@ -6,6 +6,7 @@
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <functional>
+#include <optional>
 
 #include <cmath>
 #include <limits>
@@ -297,13 +298,36 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::share_ghost_boundary_ids()
+  {
+    using Ids = std::vector<types::boundary_id>;
+    GridTools::exchange_cell_data_to_ghosts<Ids, Triangulation<dim>>(
+        triangulation,
+        [](const typename Triangulation<dim>::active_cell_iterator &cell) -> std::optional<Ids> {
+          Ids ids;
+          for (const auto &face : cell->face_iterators())
+            ids.push_back(face->at_boundary() ? face->boundary_id() : numbers::invalid_boundary_id);
+          return ids;
+        },
+        [](const typename Triangulation<dim>::active_cell_iterator &cell, const Ids &ids) {
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              cell->face(f)->set_boundary_id(ids[f]);
+        });
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::make_grid()
   {
     check_cell_shape();
     if (simplex_mesh())
       distribute_simplex_mesh();
     else
-      geometry->create_mesh(triangulation);
+      {
+        geometry->create_mesh(triangulation);
+        share_ghost_boundary_ids();
+      }
     resolve_boundaries();
     assign_material_slots();
     if (axisymmetric)

@@ -7,6 +7,7 @@
 
 #include <Epetra_CrsMatrix.h>
 
+#include <chrono>
 #include <cmath>
 
 namespace StabilizedLagrangian
@@ -15,6 +16,13 @@ namespace StabilizedLagrangian
   {
     namespace
     {
+      /** Wall time (s) since @p start. */
+      double
+      seconds_since(const std::chrono::steady_clock::time_point start)
+      {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+
       /** f(row, column, value) for every stored entry of the rows @p rows (locally owned). */
       template <typename Function>
       void
@@ -135,6 +143,7 @@ namespace StabilizedLagrangian
     {
       // the Newton matrix keeps its pattern for the life of this solver
       // (ContactProblem makes a new one with each new pattern)
+      auto       start       = std::chrono::steady_clock::now();
       const bool new_pattern = !blocks_ready;
       extract_block(matrix, owned_u, owned_u, n_u, true, true, new_pattern, communicator, K);
       extract_block(matrix, owned_u, owned_m, n_u, true, false, new_pattern, communicator, B);
@@ -149,6 +158,8 @@ namespace StabilizedLagrangian
       data.smoother_sweeps       = 2;
       data.aggregation_threshold = 0.02;
       amg.initialize(K, data);
+      times.amg_setup = seconds_since(start);
+      start           = std::chrono::steady_clock::now();
 
       schur_factorisation.reset();
       if (owned_m.size() == 0)
@@ -181,6 +192,7 @@ namespace StabilizedLagrangian
       schur_factorisation = std::make_unique<TrilinosWrappers::SolverDirect>(
           schur_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
       schur_factorisation->initialize(schur);
+      times.schur = seconds_since(start);
     }
 
     void
@@ -199,7 +211,11 @@ namespace StabilizedLagrangian
       for (unsigned int k = 0; k < owned_m.n_elements(); ++k)
         rm[k] = source[n_owned_u + k] * unweight[n_owned_u + k];
       if (schur_factorisation)
-        schur_factorisation->solve(y_m, r_m);
+        {
+          const auto start = std::chrono::steady_clock::now();
+          schur_factorisation->solve(y_m, r_m);
+          times.schur_solves += seconds_since(start);
+        }
       B.vmult(y_u, y_m);
       r_u -= y_u;
       amg.vmult(y_u, r_u);
@@ -236,8 +252,12 @@ namespace StabilizedLagrangian
     {
       error.clear();
       iterations = 0;
+      times      = PhaseTimes();
       set_up(matrix);
-      x = 0.;
+      const auto start = std::chrono::steady_clock::now();
+      // (on every exit)
+      const auto account = [&]() { times.krylov = seconds_since(start); };
+      x                  = 0.;
       // GMRES on W J x = W b, W the rows' weights, preconditioned by (W P)⁻¹ = P⁻¹ W⁻¹:
       // its residual is the weighted one the Newton criterion measures
       inverse_weights.reinit(row_weights);
@@ -257,6 +277,7 @@ namespace StabilizedLagrangian
         }
       catch (const SolverControl::NoConvergence &failure)
         {
+          account();
           iterations = failure.last_step;
           error      = "GMRES did not reach the relative residual " +
                   std::to_string(relative_tolerance) + " in " + std::to_string(max_iterations) +
@@ -264,6 +285,7 @@ namespace StabilizedLagrangian
                   std::to_string(failure.last_residual / weighted_b.l2_norm()) + ")";
           return false;
         }
+      account();
       iterations = control.last_step();
       if (!std::isfinite(x.linfty_norm()))
         {

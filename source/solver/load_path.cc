@@ -496,7 +496,11 @@ namespace StabilizedLagrangian
                         work.assemblies - path_start_work.assemblies,
                         work.jacobians - path_start_work.jacobians,
                         work.krylov_iterations - path_start_work.krylov_iterations,
-                        work.iterative_fallbacks - path_start_work.iterative_fallbacks};
+                        work.iterative_fallbacks - path_start_work.iterative_fallbacks,
+                        work.amg_setup_seconds - path_start_work.amg_setup_seconds,
+                        work.schur_seconds - path_start_work.schur_seconds,
+                        work.krylov_seconds - path_start_work.krylov_seconds,
+                        work.schur_solve_seconds - path_start_work.schur_solve_seconds};
   }
 
   template <int dim>
@@ -509,6 +513,17 @@ namespace StabilizedLagrangian
     const std::map<std::string, double> slowest = slowest_sections();
     const double                        memory  = peak_memory();
     const unsigned int held = Utilities::MPI::max(partner->n_held_faces(), mpi_communicator);
+    // the partition: owned DoFs (balance) and ghosts (the halo each exchange carries)
+    const unsigned int owned        = locally_owned.n_elements();
+    const unsigned int ghosts       = locally_relevant.n_elements() - owned;
+    const unsigned int owned_min    = Utilities::MPI::min(owned, mpi_communicator);
+    const unsigned int owned_max    = Utilities::MPI::max(owned, mpi_communicator);
+    const unsigned int ghosts_max   = Utilities::MPI::max(ghosts, mpi_communicator);
+    const double       phase_max[4] = {
+              Utilities::MPI::max(path_work.amg_setup_seconds, mpi_communicator),
+              Utilities::MPI::max(path_work.schur_seconds, mpi_communicator),
+              Utilities::MPI::max(path_work.krylov_seconds, mpi_communicator),
+              Utilities::MPI::max(path_work.schur_solve_seconds, mpi_communicator)};
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
@@ -516,14 +531,16 @@ namespace StabilizedLagrangian
         << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
            "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
            "assemblies,jacobian_assemblies,estimated_error_sqrtNmm,estimated_contact_error_sqrtNmm,"
-           "estimated_relative_error,peak_memory_MiB,wall_time_s";
+           "estimated_relative_error,peak_memory_MiB,wall_time_s,owned_dofs_min,owned_dofs_max,"
+           "ghost_dofs_max";
     if (inf_sup_checked())
       file << ",inf_sup_beta";
     // (with `automatic` also on the meshes it left to the direct solver: 0)
     const bool krylov_columns =
         linear_solver_parameters.iterative || linear_solver_parameters.automatic;
     if (krylov_columns)
-      file << ",krylov_iterations,iterative_fallbacks";
+      file << ",krylov_iterations,iterative_fallbacks,amg_setup_s,schur_complement_s,gmres_s,"
+              "schur_solves_s";
     if (partner->n_faces() > 0)
       file << ",master_faces,master_faces_held_max,master_search_growths";
     for (const auto &entry : slowest)
@@ -537,11 +554,12 @@ namespace StabilizedLagrangian
          << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
          << path_work.jacobians << ',' << last_step.estimated_error << ','
          << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
-         << ',' << wall_time;
+         << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max;
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)
-      file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks;
+      file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks << ','
+           << phase_max[0] << ',' << phase_max[1] << ',' << phase_max[2] << ',' << phase_max[3];
     if (partner->n_faces() > 0)
       file << ',' << partner->n_faces() << ',' << held << ',' << partner_dof_growths;
     for (const auto &entry : slowest)

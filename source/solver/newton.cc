@@ -244,6 +244,10 @@ namespace StabilizedLagrangian
           solved =
               iterative_solver->solve(system_matrix, update, system_rhs, residual_scaling, forcing);
           work.krylov_iterations += iterative_solver->last_iterations();
+          work.amg_setup_seconds += iterative_solver->last_times().amg_setup;
+          work.schur_seconds += iterative_solver->last_times().schur;
+          work.krylov_seconds += iterative_solver->last_times().krylov;
+          work.schur_solve_seconds += iterative_solver->last_times().schur_solves;
           if (!solved)
             {
               pcout << "  Newton: " << iterative_solver->last_error()

@@ -102,6 +102,12 @@ namespace StabilizedLagrangian
     unsigned long jacobians           = 0; ///< assemblies with the Jacobian
     unsigned long krylov_iterations   = 0; ///< GMRES iterations (Linear solver/Method = iterative)
     unsigned long iterative_fallbacks = 0; ///< systems GMRES left to the direct solver
+    /** wall time (s, this rank) of the iterative solver's phases
+     * (LinearSolvers::BlockIterativeSolver::PhaseTimes) */
+    double amg_setup_seconds   = 0.;
+    double schur_seconds       = 0.;
+    double krylov_seconds      = 0.;
+    double schur_solve_seconds = 0.;
   };
 
   /** @brief One row of the numerical inf-sup test (ContactProblem::run_inf_sup_test). */
@@ -879,6 +885,14 @@ namespace StabilizedLagrangian
     // --- contact_problem.cc: the mesh, and the setup after each refinement ---
     void
     make_grid();
+    /**
+     * The boundary ids of the ghost cells' faces as their owners set them: a
+     * geometry that sets ids from its cells' neighbourhood (close_contact_zone)
+     * sees part of it from the ghost layer only, and every rank must agree
+     * which faces are on Γc (the multiplier numbering counts on it).
+     */
+    void
+    share_ghost_boundary_ids();
     /**
      * The triangulation for the geometry's cells: p4est's for hypercubes
      * (adaptive refinement), the fully distributed one for simplices (p4est

@@ -75,6 +75,20 @@ namespace StabilizedLagrangian
         return iterations;
       }
 
+      /** @brief Wall time (s, this rank) of the last solve's phases. */
+      struct PhaseTimes
+      {
+        double amg_setup    = 0.; ///< the blocks K, B, C, D taken from J and the AMG of K
+        double schur        = 0.; ///< Ŝ formed and factorised
+        double krylov       = 0.; ///< GMRES with the preconditioner's applications
+        double schur_solves = 0.; ///< of which the solves with the factorised Ŝ
+      };
+      const PhaseTimes &
+      last_times() const
+      {
+        return times;
+      }
+
       /** @brief Why the last solve failed, in words. */
       const std::string &
       last_error() const
@@ -105,6 +119,7 @@ namespace StabilizedLagrangian
       /** 1 / the row weights of the last solve */
       TrilinosWrappers::MPI::Vector inverse_weights;
       unsigned int                  iterations = 0;
+      mutable PhaseTimes            times;
       std::string                   error;
       /** whether K, B, C, D have the Newton matrix's pattern (set_up() once) */
       bool blocks_ready = false;
