@@ -19,7 +19,8 @@ Usage: contrib/benchmark_scaling.py --executable build/stabilized_lagrangian [--
    from the measured ghost layer, reductions and the gathers of the serial Schur solve from an
    assumed network (latency, bandwidth), projected to P = 10^3 and N = 10^8; which part stops
    scaling first.
---quick: refinements 1 and 2 only (the model is then fitted on two sizes). Writes scaling.md
+--quick: refinements 1 and 2 only (the model is then fitted on two sizes); --reuse: the runs
+already in the work directory. Writes scaling.md
 (between marker comments, the text after them kept) into the --output folder (default: the work
 directory; doc/ with --doc)."""
 import argparse
@@ -38,6 +39,9 @@ parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.R
 parser.add_argument("--executable", required=True, type=tool_cli.executable)
 parser.add_argument("--workdir", default="/tmp/benchmark_scaling", help="where the runs are (default: %(default)s)")
 parser.add_argument("--quick", action="store_true", help="refinements 1 and 2 only")
+parser.add_argument("--reuse", action="store_true",
+                    help="take the runs already in the work directory (their run_summary.csv) instead of "
+                         "running them again")
 tool_cli.add_output_arguments(parser, None, ["scaling.md"])
 args = tool_cli.parse_with_workdir(parser)
 workdir = os.path.abspath(args.workdir)
@@ -66,6 +70,10 @@ NEIGHBOURS_3D = 26
 def run(name, text, ranks):
     """Run a scene on `ranks` ranks in workdir/name; its run_summary.csv row, or None."""
     case = os.path.join(workdir, name)
+    path = os.path.join(case, "output", "run_summary.csv")
+    if args.reuse and os.path.exists(path):
+        with open(path) as f:
+            return {k: float(v) for k, v in next(csv.DictReader(f)).items()}
     os.makedirs(case, exist_ok=True)
     with open(os.path.join(case, "input.prm"), "w") as f:
         f.write(text + robustness_map.OUTPUT_SECTION)
@@ -76,7 +84,6 @@ def run(name, text, ranks):
     with open(os.path.join(case, "log.txt"), "w") as log:
         code = subprocess.run(command, cwd=case, env=ENV, stdout=log, stderr=subprocess.STDOUT).returncode
     print(f"{name}: exit code {code}, {time.monotonic() - start:.0f} s", flush=True)
-    path = os.path.join(case, "output", "run_summary.csv")
     if code != 0 or not os.path.exists(path):
         return None
     with open(path) as f:
@@ -138,14 +145,26 @@ for ranks in (2, 4, 8):
 one_rank = [costs[(r, 1)] for r in refinements if (r, 1) in costs]
 if len(one_rank) < 2:
     raise SystemExit("fewer than two one-rank runs converged: no model")
-fits = {key: fit([(c["dofs"], c[key]) for c in one_rank])
-        for key in ("assembly", "amg", "gmres", "krylov", "memory")}
+fits = {key: fit([(c["dofs"], c[key]) for c in one_rank]) for key in ("assembly", "amg", "gmres", "krylov")}
+
+
+def linear_fit(points):
+    """Least-squares (a, b) of y = a + b x."""
+    mx, my = sum(x for x, _ in points) / len(points), sum(y for _, y in points) / len(points)
+    b = sum((x - mx) * (y - my) for x, y in points) / sum((x - mx) ** 2 for x, _ in points)
+    return my - b * mx, b
+
+
+# memory: what every process holds (libraries, MPI) plus a share per DoF
+memory_fit = linear_fit([(c["dofs"], c["memory"]) for c in one_rank])
 # the per-iteration cost of GMRES (without the Schur solves) per DoF
 gmres_per_iteration = fit([(c["dofs"], c["gmres"] / c["krylov"]) for c in one_rank])
 multipliers = fit([(c["dofs"], c["multipliers"]) for c in one_rank])
 schur_factorisation = fit([(c["multipliers"], c["schur"]) for c in one_rank])
 schur_solve = fit([(c["multipliers"], c["schur_solves"] / (c["krylov"] + 1)) for c in one_rank])
-ghosts = fit([(p["owned"], p["ghosts"]) for p in partitions.values()]) if len(partitions) >= 2 else None
+# the ghost layer of a 3D partition: a surface, g n^(2/3) (g from the partitions)
+ghosts = (sum(p["ghosts"] / p["owned"] ** (2 / 3) for p in partitions.values()) / len(partitions), 2 / 3) \
+    if partitions else None
 # GMRES iterations against the rank count at the largest mesh (the AMG aggregates per rank)
 krylov_at = {1: costs[(largest, 1)]["krylov"]} if (largest, 1) in costs else {}
 krylov_at.update({p: c["krylov"] for p, c in partitions.items()})
@@ -176,7 +195,7 @@ def model(N, P):
              "GMRES work": k * value(gmres_per_iteration, n),
              "Schur solves (serial)": (k + 1) * (value(schur_solve, n_m) + gather),
              "halo exchanges": k * halo, "reductions": k * reductions}
-    return parts, value(fits["memory"], n), k, n_m
+    return parts, memory_fit[0] + memory_fit[1] * n, k, n_m
 
 
 def total(parts):
@@ -233,7 +252,9 @@ lines += ["", "### 3. Model", "",
           "one rank);",
           (f"- ghost DoFs of the largest rank {ghosts[0]:.3g} n^{ghosts[1]:.2f} (section 2);" if ghosts else
            "- ghost DoFs: no partition runs;"),
-          f"- peak memory per rank {fits['memory'][0]:.3g} n^{fits['memory'][1]:.2f} MiB.", "",
+          f"- peak memory per rank {memory_fit[0]:.0f} MiB + {memory_fit[1] * 1e3:.3g} MiB per 10^3 DoFs of its "
+          "share.",
+          "",
           f"Assumed network (not measured here): latency {LATENCY_S * 1e6:.0f} µs per message and per "
           f"reduction stage, {BANDWIDTH_B_PER_S / 1e9:.0f} GB/s per rank; {HALO_EXCHANGES_PER_ITERATION} halo "
           f"exchanges per GMRES iteration with {NEIGHBOURS_3D} neighbours; log2 P stages per reduction, "
