@@ -11,7 +11,9 @@ from the direct solver's and no more; both runs converge to the same Newton
 tolerance, so the forces of every step agree to well below the
 discretisation (bound 1e-6 relative to the normal force, for Newton
 tolerances of 1e-8 to 1e-10 on the residual). No system may be left to the
-direct solver, and the GMRES iterations are reported (run_summary.csv).
+direct solver, and the GMRES iterations are reported (run_summary.csv). Against a rigid
+obstacle with the nodal contact quadrature the Schur complement falls apart into the nodes'
+blocks, inverted in place (schur_node_blocks > 0); with two bodies it is factorised whole.
 
 `Method = automatic` picks by size: on the Hertz sphere (26,304 displacement
 unknowns and the multipliers) the direct solver below `Automatic threshold` (no
@@ -56,6 +58,13 @@ for name, ranks in (("patin_elastic", 1), ("patin_elastic", 2), ("patin_3d", 1),
           f"{label}: {int(summary['krylov_iterations'])} GMRES iterations for "
           f"{int(summary['newton_iterations'])} Newton iterations, "
           f"{int(summary['iterative_fallbacks'])} systems left to the direct solver")
+    # against a rigid partner with the nodal (Gauss-Lobatto) contact quadrature each multiplier
+    # couples only with its own node: Schur's blocks are the nodes', inverted where they are owned
+    nodal = name != "two_cylinders"
+    blocks = int(summary["schur_node_blocks"])
+    check((blocks > 0) == nodal and blocks <= summary["multiplier_dofs"],
+          f"{label}: the Schur complement {f'inverted in {blocks} blocks' if blocks else 'factorised whole'} "
+          f"({int(summary['multiplier_dofs'])} multipliers)")
 
 # Method = automatic: by the unknowns of the mesh, in 3D only
 AUTOMATIC = sltest.nested_set("Linear solver/Method", "automatic")

@@ -524,6 +524,8 @@ namespace StabilizedLagrangian
               Utilities::MPI::max(path_work.schur_seconds, mpi_communicator),
               Utilities::MPI::max(path_work.krylov_seconds, mpi_communicator),
               Utilities::MPI::max(path_work.schur_solve_seconds, mpi_communicator)};
+    const unsigned int schur_blocks = Utilities::MPI::sum(
+        iterative_solver ? iterative_solver->n_local_blocks() : 0u, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
@@ -540,7 +542,7 @@ namespace StabilizedLagrangian
         linear_solver_parameters.iterative || linear_solver_parameters.automatic;
     if (krylov_columns)
       file << ",krylov_iterations,iterative_fallbacks,amg_setup_s,schur_complement_s,gmres_s,"
-              "schur_solves_s";
+              "schur_solves_s,schur_node_blocks";
     if (partner->n_faces() > 0)
       file << ",master_faces,master_faces_held_max,master_search_growths";
     for (const auto &entry : slowest)
@@ -559,7 +561,8 @@ namespace StabilizedLagrangian
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)
       file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks << ','
-           << phase_max[0] << ',' << phase_max[1] << ',' << phase_max[2] << ',' << phase_max[3];
+           << phase_max[0] << ',' << phase_max[1] << ',' << phase_max[2] << ',' << phase_max[3]
+           << ',' << schur_blocks;
     if (partner->n_faces() > 0)
       file << ',' << partner->n_faces() << ',' << held << ',' << partner_dof_growths;
     for (const auto &entry : slowest)

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/index_set.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
@@ -89,6 +90,14 @@ namespace StabilizedLagrangian
         return times;
       }
 
+      /** @brief The blocks of Ŝ inverted in place on this rank at the last set-up (0: Ŝ factorised
+       * whole). */
+      unsigned int
+      n_local_blocks() const
+      {
+        return block_rows.size();
+      }
+
       /** @brief Why the last solve failed, in words. */
       const std::string &
       last_error() const
@@ -104,6 +113,20 @@ namespace StabilizedLagrangian
       /** K, B, C, D from @p matrix, then the AMG of K and the factorised Ŝ. */
       void
       set_up(const TrilinosWrappers::SparseMatrix &matrix);
+
+      /**
+       * Where Ŝ falls apart into small blocks that each rank owns whole (a
+       * nodal contact quadrature against a rigid partner: each multiplier
+       * couples only with its own node), invert them in place: no serial
+       * factorisation, no gather (doc/scaling.md). False on every rank if some
+       * rank's Ŝ does not (collective).
+       */
+      bool
+      invert_local_blocks();
+
+      /** Ŝ's blocks (their rows, as local indices among owned_m) and their inverses. */
+      std::vector<std::vector<unsigned int>> block_rows;
+      std::vector<FullMatrix<double>>        block_inverses;
 
       const MPI_Comm                                  communicator;
       const types::global_dof_index                   n_u;
