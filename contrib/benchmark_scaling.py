@@ -112,6 +112,7 @@ def per_newton(s):
             "gmres": (s["gmres_s"] - s["schur_solves_s"]) / newton,
             "schur_solves": s["schur_solves_s"] / newton, "krylov": s["krylov_iterations"] / newton,
             "linear": s["linear_solve_s"] / newton, "memory": s["peak_memory_MiB"],
+            "blocks": s.get("schur_node_blocks", 0),
             "wall": s["wall_time_s"]}
 
 
@@ -161,6 +162,9 @@ memory_fit = linear_fit([(c["dofs"], c["memory"]) for c in one_rank])
 gmres_per_iteration = fit([(c["dofs"], c["gmres"] / c["krylov"]) for c in one_rank])
 multipliers = fit([(c["dofs"], c["multipliers"]) for c in one_rank])
 schur_factorisation = fit([(c["multipliers"], c["schur"]) for c in one_rank])
+# Ŝ in node blocks each rank inverts (rigid partner, nodal quadrature), or gathered and
+# factorised on one rank
+local_schur = all(c["blocks"] > 0 for c in one_rank)
 schur_solve = fit([(c["multipliers"], c["schur_solves"] / (c["krylov"] + 1)) for c in one_rank])
 # the ghost layer of a 3D partition: a surface, g n^(2/3) (g from the partitions)
 ghosts = (sum(p["ghosts"] / p["owned"] ** (2 / 3) for p in partitions.values()) / len(partitions), 2 / 3) \
@@ -176,6 +180,10 @@ def value(f, x):
     return f[0] * x ** f[1]
 
 
+SCHUR_SET_UP = "Schur set-up (node blocks, per rank)" if local_schur else "Schur factorisation (serial)"
+SCHUR_SOLVES = "Schur solves (node blocks, per rank)" if local_schur else "Schur solves (serial)"
+
+
 def model(N, P):
     """Seconds per Newton iteration on the largest rank, by part, and its memory (MiB)."""
     n = N / P
@@ -187,13 +195,18 @@ def model(N, P):
         halo = HALO_EXCHANGES_PER_ITERATION * (volume / BANDWIDTH_B_PER_S + NEIGHBOURS_3D * LATENCY_S)
     # modified Gram-Schmidt: about min(k, 100) / 2 + 2 reductions per GMRES iteration
     reductions = (min(k, 100) / 2 + 2) * LATENCY_S * math.log2(P) if P > 1 else 0.
-    # the serial Schur solve (one rank): its right-hand side gathered from and the solution
-    # scattered to every rank
-    gather = 2 * (n_m * 8 / BANDWIDTH_B_PER_S + (P - 1) * LATENCY_S) if P > 1 else 0.
+    if local_schur:
+        # each rank inverts the blocks of its own nodes
+        m_rank, gather = n_m / P, 0.
+    else:
+        # one rank factorises and solves; the right-hand side gathered from and the solution
+        # scattered to every rank
+        m_rank = n_m
+        gather = 2 * (n_m * 8 / BANDWIDTH_B_PER_S + (P - 1) * LATENCY_S) if P > 1 else 0.
     parts = {"assembly": value(fits["assembly"], n), "AMG set-up": value(fits["amg"], n),
-             "Schur factorisation (serial)": value(schur_factorisation, n_m),
+             SCHUR_SET_UP: value(schur_factorisation, m_rank),
              "GMRES work": k * value(gmres_per_iteration, n),
-             "Schur solves (serial)": (k + 1) * (value(schur_solve, n_m) + gather),
+             SCHUR_SOLVES: (k + 1) * (value(schur_solve, m_rank) + gather),
              "halo exchanges": k * halo, "reductions": k * reductions}
     return parts, memory_fit[0] + memory_fit[1] * n, k, n_m
 
@@ -246,10 +259,11 @@ lines += ["", "### 3. Model", "",
           f"{gmres_per_iteration[0]:.3g} n^{gmres_per_iteration[1]:.2f} s;",
           f"- GMRES iterations per solve {fits['krylov'][0]:.3g} N^{fits['krylov'][1]:.2f}, times "
           f"{rank_growth[0]:.3g} P^{rank_growth[1]:.2f} on P ranks (section 2);",
-          f"- multipliers {multipliers[0]:.3g} N^{multipliers[1]:.2f}; the Schur complement's factorisation "
+          f"- multipliers {multipliers[0]:.3g} N^{multipliers[1]:.2f}; the Schur complement's set-up "
           f"{schur_factorisation[0]:.3g} m^{schur_factorisation[1]:.2f} s and one solve with it "
-          f"{schur_solve[0]:.3g} m^{schur_solve[1]:.2f} s (m multipliers; KLU, serial: Amesos gathers Ŝ onto "
-          "one rank);",
+          f"{schur_solve[0]:.3g} m^{schur_solve[1]:.2f} s (m multipliers; " +
+          ("inverted in the nodes' blocks, by the rank that owns them, so m is the rank's share);"
+           if local_schur else "KLU, serial: Amesos gathers Ŝ onto one rank);"),
           (f"- ghost DoFs of the largest rank {ghosts[0]:.3g} n^{ghosts[1]:.2f} (section 2);" if ghosts else
            "- ghost DoFs: no partition runs;"),
           f"- peak memory per rank {memory_fit[0]:.0f} MiB + {memory_fit[1] * 1e3:.3g} MiB per 10^3 DoFs of its "
@@ -258,8 +272,9 @@ lines += ["", "### 3. Model", "",
           f"Assumed network (not measured here): latency {LATENCY_S * 1e6:.0f} µs per message and per "
           f"reduction stage, {BANDWIDTH_B_PER_S / 1e9:.0f} GB/s per rank; {HALO_EXCHANGES_PER_ITERATION} halo "
           f"exchanges per GMRES iteration with {NEIGHBOURS_3D} neighbours; log2 P stages per reduction, "
-          "min(k, 100) / 2 + 2 reductions per GMRES iteration (modified Gram–Schmidt); the serial Schur solve "
-          "gathers its right-hand side from every rank and scatters the solution (2 (P − 1) messages).", ""]
+          "min(k, 100) / 2 + 2 reductions per GMRES iteration (modified Gram–Schmidt); where Ŝ is factorised "
+          "whole on one rank, each of its solves gathers the right-hand side from every rank and scatters the "
+          "solution (2 (P − 1) messages).", ""]
 header = ["N", "P", "n per rank", "GMRES per solve", "multipliers"]
 projections = [(c["dofs"], r) for (ref, r), c in sorted(costs.items()) if ref == largest] + \
     [(1e6, 8), (1e7, 100), (1e8, 1000), (1e8, 4000)]
@@ -276,14 +291,15 @@ for N, P in projections:
     lines.append(f"| {N:.3g} | {P} | {N / P:.3g} | {k:.0f} | {n_m:.3g} | " +
                  " | ".join(f"{v:.3g}" for v in parts.values()) + f" | {total(parts):.3g} | {measured} | "
                  f"{memory:.0f} |")
-serial = {}
+share = {}
 for N, P in ((1e8, 1000), (1e8, 4000)):
     parts, _, _, _ = model(N, P)
-    serial[P] = (parts["Schur factorisation (serial)"] + parts["Schur solves (serial)"]) / total(parts)
+    share[P] = (parts[SCHUR_SET_UP] + parts[SCHUR_SOLVES]) / total(parts)
 worst = max(model(1e8, 1000)[0].items(), key=lambda item: item[1])
 lines += ["", f"- At N = 10^8 on 10^3 ranks the largest part is {worst[0]} ({worst[1]:.3g} s of "
-          f"{total(model(1e8, 1000)[0]):.3g} s per Newton iteration); the serial Schur complement takes "
-          f"{100 * serial[1000]:.0f} % of it, {100 * serial[4000]:.0f} % on 4·10^3 ranks.", "", END]
+          f"{total(model(1e8, 1000)[0]):.3g} s per Newton iteration); the Schur complement "
+          f"({'node blocks' if local_schur else 'serial'}) takes {100 * share[1000]:.0f} % of it, "
+          f"{100 * share[4000]:.0f} % on 4·10^3 ranks.", "", END]
 path = tool_cli.destination(args, "scaling.md")
 robustness_map.write_section(path, BEGIN, END, "\n".join(lines))
 print(f"wrote {path}")
