@@ -201,18 +201,24 @@ def kill_group(process):
         pass
 
 
-def run_case(executable, text, case_dir, timeout, running):
-    """Run one case in case_dir (emptied first) and return its row without r_n, r_t."""
+def run_case(executable, text, case_dir, timeout, running, ranks=1):
+    """Run one case in case_dir (emptied first), on `ranks` MPI ranks, and return its row without
+    r_n, r_t."""
     shutil.rmtree(case_dir, ignore_errors=True)
     os.makedirs(case_dir)
     with open(os.path.join(case_dir, "input.prm"), "w") as f:
         f.write(text)
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    command = [executable, "input.prm"]
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1")
     row = dict(outcome="error", exit_code=None, load_steps=None, newton_iterations=None,
                mean_newton_per_step=None)
     start = time.monotonic()
     with open(os.path.join(case_dir, "log.txt"), "w") as log:
-        process = running.start([executable, "input.prm"], case_dir, log, env)
+        process = running.start(command, case_dir, log, env)
         if process is None:  # the sweep was interrupted
             return None
         try:

@@ -335,7 +335,10 @@ namespace StabilizedLagrangian
       types::global_dof_index automatic_threshold = 20000;
       std::string             direct_solver;
       double                  maximum_forcing_term = 1e-3; ///< the largest relative GMRES tolerance
-      unsigned int            maximum_iterations   = 300;  ///< GMRES iterations per Newton system
+      double schur_augmentation = 10.; ///< c of the augmented preconditioner (Γ = c diag(X̂)⁻¹)
+      bool   rigid_body_modes =
+          false; ///< the AMG's near-null space: rotations too, not only translations
+      unsigned int maximum_iterations = 300; ///< GMRES iterations per Newton system
       /** GMRES tolerance from Eisenstat–Walker, or from the Newton tolerance (default) */
       bool         eisenstat_walker     = false;
       bool         null_pivot_detection = false; ///< MUMPS: solve singular systems

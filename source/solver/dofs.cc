@@ -800,19 +800,58 @@ namespace StabilizedLagrangian
     iterative_solver.reset();
     if (iterative)
       {
-        // the AMG's near-null space: the displacement's translations
-        std::vector<std::vector<bool>> constant_modes;
-        DoFTools::extract_constant_modes(dof_handler_u, ComponentMask(dim, true), constant_modes);
         iterative_solver = std::make_unique<LinearSolvers::BlockIterativeSolver>(
             locally_owned,
             n_u,
             mpi_communicator,
-            constant_modes,
+            dim,
+            rigid_body_modes(),
             fe_pair->displacement_degree() > 1,
+            linear_solver_parameters.schur_augmentation,
             linear_solver_parameters.maximum_iterations);
       }
     sparsity_ready = true;
     sparsity_stale = false;
+  }
+
+  template <int dim>
+  std::vector<std::vector<double>>
+  ContactProblem<dim>::rigid_body_modes() const
+  {
+    const unsigned int n_modes =
+        (axisymmetric || !linear_solver_parameters.rigid_body_modes) ? dim : (dim == 2 ? 3 : 6);
+    std::vector<std::vector<double>>     modes(n_modes,
+                                           std::vector<double>(locally_owned_u.n_elements()));
+    const std::vector<Point<dim>>       &unit_points = fe_u->get_unit_support_points();
+    std::vector<types::global_dof_index> indices(fe_u->n_dofs_per_cell());
+    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Mapping<dim> &mapping =
+              cell->reference_cell().template get_default_linear_mapping<dim>();
+          cell->get_dof_indices(indices);
+          for (unsigned int i = 0; i < indices.size(); ++i)
+            if (locally_owned_u.is_element(indices[i]))
+              {
+                const unsigned int k = locally_owned_u.index_within_set(indices[i]);
+                const unsigned int c = fe_u->system_to_component_index(i).first;
+                const Point<dim>   x = mapping.transform_unit_to_real_cell(cell, unit_points[i]);
+                modes[c][k]          = 1.;
+                if (n_modes == dim)
+                  continue;
+                // the rotation about each axis a: a × x
+                for (unsigned int axis = 0; axis < n_modes - dim; ++axis)
+                  {
+                    Tensor<1, 3> a, position, rotation;
+                    a[dim == 2 ? 2 : axis] = 1.;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      position[d] = x[d];
+                    rotation             = cross_product_3d(a, position);
+                    modes[dim + axis][k] = rotation[c];
+                  }
+              }
+        }
+    return modes;
   }
 
   template <int dim>

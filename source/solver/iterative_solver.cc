@@ -6,6 +6,8 @@
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_MultiVector.h>
+#include <EpetraExt_Transpose_RowMatrix.h>
 
 #include <chrono>
 #include <cmath>
@@ -23,6 +25,15 @@ namespace StabilizedLagrangian
       seconds_since(const std::chrono::steady_clock::time_point start)
       {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+
+      /** The place of @p index among the elements of @p set (an element of it). */
+      unsigned int
+      position(const IndexSet &set, const types::global_dof_index index)
+      {
+        const unsigned int place = set.index_within_set(index);
+        AssertThrow(place != numbers::invalid_unsigned_int, ExcInternalError());
+        return place;
       }
 
       /** f(row, column, value) for every stored entry of the rows @p rows (locally owned). */
@@ -111,18 +122,23 @@ namespace StabilizedLagrangian
       }
     } // namespace
 
-    BlockIterativeSolver::BlockIterativeSolver(const IndexSet                       &owned,
-                                               const types::global_dof_index         n_u,
-                                               const MPI_Comm                        communicator,
-                                               const std::vector<std::vector<bool>> &constant_modes,
-                                               const bool         higher_order_elements,
-                                               const unsigned int max_iterations)
+    BlockIterativeSolver::BlockIterativeSolver(
+        const IndexSet                         &owned,
+        const types::global_dof_index           n_u,
+        const MPI_Comm                          communicator,
+        const unsigned int                      n_components,
+        const std::vector<std::vector<double>> &near_null_space,
+        const bool                              higher_order_elements,
+        const double                            augmentation_factor,
+        const unsigned int                      max_iterations)
         : communicator(communicator)
         , n_u(n_u)
         , owned_u(n_u)
         , owned_m(owned.size() - n_u)
-        , constant_modes(constant_modes)
+        , n_components(n_components)
+        , n_modes(near_null_space.size())
         , higher_order_elements(higher_order_elements)
+        , augmentation_factor(augmentation_factor)
         , max_iterations(max_iterations)
     {
       for (const auto index : owned)
@@ -132,10 +148,16 @@ namespace StabilizedLagrangian
           owned_m.add_index(index - n_u);
       owned_u.compress();
       owned_m.compress();
+      for (const auto &mode : near_null_space)
+        {
+          Assert(mode.size() == owned_u.n_elements(), ExcInternalError());
+          this->near_null_space.insert(this->near_null_space.end(), mode.begin(), mode.end());
+        }
       r_u.reinit(owned_u, communicator);
       y_u.reinit(owned_u, communicator);
       r_m.reinit(owned_m, communicator);
       y_m.reinit(owned_m, communicator);
+      t_m.reinit(owned_m, communicator);
     }
 
     BlockIterativeSolver::~BlockIterativeSolver() = default;
@@ -153,13 +175,93 @@ namespace StabilizedLagrangian
       extract_block(matrix, owned_m, owned_m, n_u, false, false, new_pattern, communicator, D);
       blocks_ready = true;
 
+      // diag(K)⁻¹, and X̂ = C diag(K)⁻¹ B: the multipliers' compliance with K
+      // replaced by its diagonal
+      TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
+      const auto invert_diagonal = [&](const TrilinosWrappers::SparseMatrix &matrix) {
+        for (const auto i : owned_u)
+          {
+            const double diagonal = matrix.diag_element(i);
+            inverse_diagonal(i)   = diagonal != 0. ? 1. / diagonal : 0.;
+          }
+        inverse_diagonal.compress(VectorOperation::insert);
+      };
+      invert_diagonal(K);
+
+      // Γ = c diag(C diag(K)⁻¹ Cᵀ)⁻¹ on the rows that only constrain the
+      // displacement (D's row vanishes: contact without friction, stick), 0 on
+      // the others (an open node's row has C = 0; augmenting rows with D
+      // entries too, Γ D ≠ 0, made GMRES stagnate on the patins)
+      augmentation.reinit(owned_m, communicator);
+      if (augmentation_factor > 0.)
+        {
+          EpetraExt::RowMatrix_Transpose transposer;
+          C_transposed.reinit(dynamic_cast<const Epetra_CrsMatrix &>(
+              transposer(const_cast<Epetra_CrsMatrix &>(C.trilinos_matrix()))));
+          TrilinosWrappers::SparseMatrix compliance;
+          C.mmult(compliance, C_transposed, inverse_diagonal);
+          std::vector<double> row_size(owned_m.n_elements()), diagonal(owned_m.n_elements());
+          for_each_entry(
+              compliance, owned_m, [&](const auto row, const auto column, const double value) {
+                const unsigned int i = position(owned_m, row);
+                row_size[i]          = std::max(row_size[i], std::abs(value));
+                if (column == row)
+                  diagonal[i] = value;
+              });
+          std::vector<double> d_row_size(owned_m.n_elements());
+          for_each_entry(D, owned_m, [&](const auto row, const auto, const double value) {
+            double &size = d_row_size[position(owned_m, row)];
+            size         = std::max(size, std::abs(value));
+          });
+          for (unsigned int i = 0; i < diagonal.size(); ++i)
+            if (diagonal[i] > 1e-8 * row_size[i] && d_row_size[i] == 0.)
+              augmentation(owned_m.nth_index_in_set(i)) = augmentation_factor / diagonal[i];
+        }
+      augmentation.compress(VectorOperation::insert);
+
+      // K̃ = K + Cᵀ Γ C, on the union of K's pattern and Cᵀ C's (made once per pattern)
+      if (new_pattern)
+        {
+          TrilinosWrappers::SparsityPattern pattern(owned_u, owned_u, communicator);
+          const auto add_to_pattern = [&](const auto row, const auto column, const double) {
+            pattern.add(row, column);
+          };
+          for_each_entry(K, owned_u, add_to_pattern);
+          if (augmentation_factor > 0.)
+            {
+              TrilinosWrappers::SparseMatrix coupling;
+              C_transposed.mmult(coupling, C);
+              for_each_entry(coupling, owned_u, add_to_pattern);
+            }
+          pattern.compress();
+          augmented.reinit(pattern);
+        }
+      augmented = 0.;
+      augmented.add(1., K);
+      if (augmentation.linfty_norm() > 0.)
+        {
+          TrilinosWrappers::SparseMatrix penalty;
+          C_transposed.mmult(penalty, C, augmentation);
+          augmented.add(1., penalty);
+        }
+
+      // smoothed aggregation with the given near-null space (translations, or
+      // all rigid-body modes), aggregating whole nodes
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.elliptic              = true;
       data.higher_order_elements = higher_order_elements;
-      data.constant_modes        = constant_modes;
+      data.constant_modes.assign(n_components, std::vector<bool>(owned_u.n_elements(), false));
       data.smoother_sweeps       = 2;
       data.aggregation_threshold = 0.02;
-      amg.initialize(K, data);
+      Teuchos::ParameterList              parameters;
+      std::unique_ptr<Epetra_MultiVector> constant_modes;
+      data.set_parameters(parameters, constant_modes, augmented);
+      parameters.set("null space: type", "pre-computed");
+      parameters.set("null space: dimension", static_cast<int>(n_modes));
+      parameters.set("null space: vectors", const_cast<double *>(near_null_space.data()));
+      // (the DoFs of a node are consecutive: aggregate nodes, not single DoFs)
+      parameters.set("PDE equations", static_cast<int>(n_components));
+      amg.initialize(augmented, parameters);
       times.amg_setup = seconds_since(start);
       start           = std::chrono::steady_clock::now();
 
@@ -168,14 +270,8 @@ namespace StabilizedLagrangian
       block_inverses.clear();
       if (owned_m.size() == 0)
         return;
-      // Ŝ = D − C diag(K)⁻¹ B, on the union of the patterns of D and C B
-      TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
-      for (const auto i : owned_u)
-        {
-          const double diagonal = K.diag_element(i);
-          inverse_diagonal(i)   = diagonal != 0. ? 1. / diagonal : 0.;
-        }
-      inverse_diagonal.compress(VectorOperation::insert);
+      // Ŝ = D − C diag(K̃)⁻¹ B (Γ D = 0: B + Cᵀ Γ D = B), on the union of the patterns
+      invert_diagonal(augmented);
       TrilinosWrappers::SparseMatrix product;
       C.mmult(product, B, inverse_diagonal);
       TrilinosWrappers::SparsityPattern pattern(owned_m, owned_m, communicator);
@@ -221,17 +317,17 @@ namespace StabilizedLagrangian
       // couples two rows only where its value does, beyond round-off of the row)
       std::vector<double> row_size(n_rows);
       for_each_entry(schur, owned_m, [&](const auto row, const auto, const double value) {
-        double &size = row_size[owned_m.index_within_set(row)];
+        double &size = row_size[position(owned_m, row)];
         size         = std::max(size, std::abs(value));
       });
       int local = 1;
       for_each_entry(schur, owned_m, [&](const auto row, const auto column, const double value) {
-        if (std::abs(value) <= 1e-12 * row_size[owned_m.index_within_set(row)])
+        if (std::abs(value) <= 1e-12 * row_size[position(owned_m, row)])
           return;
         if (!owned_m.is_element(column))
           local = 0;
         else
-          root[find(owned_m.index_within_set(row))] = find(owned_m.index_within_set(column));
+          root[find(position(owned_m, row))] = find(position(owned_m, column));
       });
       std::map<unsigned int, std::vector<unsigned int>> components;
       if (local == 1)
@@ -258,10 +354,10 @@ namespace StabilizedLagrangian
         for (const unsigned int i : block_rows[b])
           block_of[i] = b;
       for_each_entry(schur, owned_m, [&](const auto row, const auto column, const double value) {
-        const unsigned int i = owned_m.index_within_set(row);
+        const unsigned int i = position(owned_m, row);
         if (std::abs(value) <= 1e-12 * row_size[i])
           return;
-        const unsigned int j = owned_m.index_within_set(column);
+        const unsigned int j = position(owned_m, column);
         block_inverses[block_of[i]](place[i], place[j]) += value;
       });
       for (auto &block : block_inverses)
@@ -307,8 +403,16 @@ namespace StabilizedLagrangian
           schur_factorisation->solve(y_m, r_m);
           times.schur_solves += seconds_since(start);
         }
+      // K̃ y_u = r_u + Cᵀ Γ r_m − (B + Cᵀ Γ D) y_m = r_u − B y_m + Cᵀ Γ r_m
       B.vmult(y_u, y_m);
       r_u -= y_u;
+      if (augmentation_factor > 0.)
+        {
+          t_m = r_m;
+          t_m.scale(augmentation);
+          C_transposed.vmult(y_u, t_m);
+          r_u += y_u;
+        }
       amg.vmult(y_u, r_u);
       double       *destination = dst.trilinos_vector()[0];
       const double *yu = y_u.trilinos_vector()[0], *ym = y_m.trilinos_vector()[0];

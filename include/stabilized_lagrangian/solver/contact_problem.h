@@ -1048,6 +1048,14 @@ namespace StabilizedLagrangian
     void
     setup_constraints();
     /**
+     * The AMG's near-null space over the displacement's locally owned DoFs,
+     * in their order: the dim translations, then with `AMG near-null space =
+     * rigid body modes` the rotations (one in 2D, three in 3D) about the
+     * origin of the reference configuration (not in an axisymmetric model).
+     */
+    std::vector<std::vector<double>>
+    rigid_body_modes() const;
+    /**
      * Boxes around this rank's slave contact faces, displaced by @p u at their
      * vertices (null: in the reference configuration): where the partner's
      * faces must be held for the search (Contact::Partner::gather_faces_near()).

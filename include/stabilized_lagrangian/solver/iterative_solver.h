@@ -30,7 +30,7 @@ namespace StabilizedLagrangian
      *         [ C  D ],         [ 0  Ŝ ],    Ŝ = D − C diag(K)⁻¹ B,
      *
      * is solved by right-preconditioned GMRES with P: K̂⁻¹ is one V-cycle of
-     * algebraic multigrid (Trilinos ML) on K with the translations as its
+     * algebraic multigrid (Trilinos ML) on K with the rigid-body modes as its
      * near-null space, Ŝ the Schur complement with K replaced by its
      * diagonal, a sparse matrix on the multipliers only (they live on Γc),
      * factorised by a direct solver. With K̂ = K and Ŝ the exact Schur
@@ -43,17 +43,21 @@ namespace StabilizedLagrangian
       /**
        * @param owned the locally owned rows of the Newton matrix
        * @param n_u the number of displacement DoFs (the first block)
-       * @param constant_modes the displacement's constant modes per component
-       *   (DoFTools::extract_constant_modes), over its locally owned DoFs
+       * @param n_components the displacement's components
+       * @param near_null_space the AMG's near-null space (the rigid-body
+       *   modes), each over the displacement's locally owned DoFs
        * @param higher_order_elements quadratic displacements (the AMG's setting)
+       * @param augmentation_factor c in Γ = c diag(C diag(K)⁻¹ B)⁻¹ (0: no augmentation)
        * @param max_iterations GMRES iterations before the solve is declared failed
        */
-      BlockIterativeSolver(const IndexSet                       &owned,
-                           const types::global_dof_index         n_u,
-                           const MPI_Comm                        communicator,
-                           const std::vector<std::vector<bool>> &constant_modes,
-                           const bool                            higher_order_elements,
-                           const unsigned int                    max_iterations);
+      BlockIterativeSolver(const IndexSet                         &owned,
+                           const types::global_dof_index           n_u,
+                           const MPI_Comm                          communicator,
+                           const unsigned int                      n_components,
+                           const std::vector<std::vector<double>> &near_null_space,
+                           const bool                              higher_order_elements,
+                           const double                            augmentation_factor,
+                           const unsigned int                      max_iterations);
       ~BlockIterativeSolver();
 
       /**
@@ -128,17 +132,25 @@ namespace StabilizedLagrangian
       std::vector<std::vector<unsigned int>> block_rows;
       std::vector<FullMatrix<double>>        block_inverses;
 
-      const MPI_Comm                                  communicator;
-      const types::global_dof_index                   n_u;
-      IndexSet                                        owned_u, owned_m;
-      const std::vector<std::vector<bool>>            constant_modes;
-      const bool                                      higher_order_elements;
-      const unsigned int                              max_iterations;
-      TrilinosWrappers::SparseMatrix                  K, B, C, D, schur;
+      const MPI_Comm                communicator;
+      const types::global_dof_index n_u;
+      IndexSet                      owned_u, owned_m;
+      const unsigned int            n_components;
+      /** the near-null space, mode after mode (ML's layout), alive as long as the AMG */
+      std::vector<double>            near_null_space;
+      unsigned int                   n_modes;
+      const bool                     higher_order_elements;
+      const double                   augmentation_factor;
+      const unsigned int             max_iterations;
+      TrilinosWrappers::SparseMatrix K, B, C, D, schur;
+      /** Cᵀ, and K̃ = K + Cᵀ Γ C, the displacement block of the augmented system */
+      TrilinosWrappers::SparseMatrix C_transposed, augmented;
+      /** Γ: the weights of the multipliers' rows added to the displacement's */
+      TrilinosWrappers::MPI::Vector                   augmentation;
       TrilinosWrappers::PreconditionAMG               amg;
       SolverControl                                   schur_control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> schur_factorisation;
-      mutable TrilinosWrappers::MPI::Vector           r_u, r_m, y_u, y_m;
+      mutable TrilinosWrappers::MPI::Vector           r_u, r_m, y_u, y_m, t_m;
       /** 1 / the row weights of the last solve */
       TrilinosWrappers::MPI::Vector inverse_weights;
       unsigned int                  iterations = 0;
