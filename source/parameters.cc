@@ -914,8 +914,10 @@ namespace StabilizedLagrangian
           "10",
           Patterns::Double(0., 1e6),
           "Method = iterative: c in the augmented preconditioner. The multiplier rows that "
-          "only constrain the displacement (contact without friction, stick) are added to the "
-          "displacement rows, weighted by Gamma = c diag(C diag(K)^-1 C^T)^-1, so the multigrid "
+          "only constrain the displacement, each on its own (no entry in D, no displacement DoF "
+          "shared with another row: a nodal contact quadrature against a rigid obstacle) are "
+          "added to the displacement rows, weighted by Gamma = c diag(C diag(K)^-1 C^T)^-1, so the "
+          "multigrid "
           "works on K + C^T Gamma C (a penalty stiffness of c times the node's diagonal) and the "
           "Schur complement with diag(K + C^T Gamma C) is within a factor (1 + c) / c of the "
           "exact one whatever the mesh (doc/formulation.md, \"Iterative linear solver\"). "
