@@ -169,14 +169,39 @@ namespace StabilizedLagrangian
       // (ContactProblem makes a new one with each new pattern)
       auto       start       = std::chrono::steady_clock::now();
       const bool new_pattern = !blocks_ready;
-      extract_block(matrix, owned_u, owned_u, n_u, true, true, new_pattern, communicator, K);
       extract_block(matrix, owned_u, owned_m, n_u, true, false, new_pattern, communicator, B);
       extract_block(matrix, owned_m, owned_u, n_u, false, true, new_pattern, communicator, C);
       extract_block(matrix, owned_m, owned_m, n_u, false, false, new_pattern, communicator, D);
+      if (augmentation_factor > 0.)
+        {
+          EpetraExt::RowMatrix_Transpose transposer;
+          C_transposed.reinit(dynamic_cast<const Epetra_CrsMatrix &>(
+              transposer(const_cast<Epetra_CrsMatrix &>(C.trilinos_matrix()))));
+        }
+      // K is stored only as K̃ = K + Cᵀ Γ C, on the union of K's pattern and
+      // Cᵀ C's (made once per pattern); its values first are K's
+      if (new_pattern)
+        {
+          TrilinosWrappers::SparsityPattern pattern(owned_u, owned_u, communicator);
+          const auto add_to_pattern = [&](const auto row, const auto column, const double) {
+            if (column < n_u)
+              pattern.add(row, column);
+          };
+          for_each_entry(matrix, owned_u, add_to_pattern);
+          if (augmentation_factor > 0.)
+            {
+              TrilinosWrappers::SparseMatrix coupling;
+              C_transposed.mmult(coupling, C);
+              for_each_entry(coupling, owned_u, add_to_pattern);
+            }
+          pattern.compress();
+          augmented.reinit(pattern);
+        }
+      augmented = 0.;
+      extract_block(matrix, owned_u, owned_u, n_u, true, true, false, communicator, augmented);
       blocks_ready = true;
 
-      // diag(K)⁻¹, and X̂ = C diag(K)⁻¹ B: the multipliers' compliance with K
-      // replaced by its diagonal
+      // diag(K)⁻¹, for the multipliers' compliance with K replaced by its diagonal
       TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
       const auto invert_diagonal = [&](const TrilinosWrappers::SparseMatrix &matrix) {
         for (const auto i : owned_u)
@@ -186,7 +211,7 @@ namespace StabilizedLagrangian
           }
         inverse_diagonal.compress(VectorOperation::insert);
       };
-      invert_diagonal(K);
+      invert_diagonal(augmented);
 
       // Γ = c diag(C diag(K)⁻¹ Cᵀ)⁻¹ on the rows that only constrain the
       // displacement, each on its own: D's row vanishes (augmenting rows with D
@@ -198,9 +223,6 @@ namespace StabilizedLagrangian
       augmentation.reinit(owned_m, communicator);
       if (augmentation_factor > 0.)
         {
-          EpetraExt::RowMatrix_Transpose transposer;
-          C_transposed.reinit(dynamic_cast<const Epetra_CrsMatrix &>(
-              transposer(const_cast<Epetra_CrsMatrix &>(C.trilinos_matrix()))));
           TrilinosWrappers::SparseMatrix compliance;
           C.mmult(compliance, C_transposed, inverse_diagonal);
           std::vector<double> coupling(owned_m.n_elements()), diagonal(owned_m.n_elements());
@@ -222,26 +244,6 @@ namespace StabilizedLagrangian
               augmentation(owned_m.nth_index_in_set(i)) = augmentation_factor / diagonal[i];
         }
       augmentation.compress(VectorOperation::insert);
-
-      // K̃ = K + Cᵀ Γ C, on the union of K's pattern and Cᵀ C's (made once per pattern)
-      if (new_pattern)
-        {
-          TrilinosWrappers::SparsityPattern pattern(owned_u, owned_u, communicator);
-          const auto add_to_pattern = [&](const auto row, const auto column, const double) {
-            pattern.add(row, column);
-          };
-          for_each_entry(K, owned_u, add_to_pattern);
-          if (augmentation_factor > 0.)
-            {
-              TrilinosWrappers::SparseMatrix coupling;
-              C_transposed.mmult(coupling, C);
-              for_each_entry(coupling, owned_u, add_to_pattern);
-            }
-          pattern.compress();
-          augmented.reinit(pattern);
-        }
-      augmented = 0.;
-      augmented.add(1., K);
       if (augmentation.linfty_norm() > 0.)
         {
           TrilinosWrappers::SparseMatrix penalty;
@@ -254,12 +256,12 @@ namespace StabilizedLagrangian
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.elliptic              = true;
       data.higher_order_elements = higher_order_elements;
-      data.constant_modes.assign(n_components, std::vector<bool>(owned_u.n_elements(), false));
       data.smoother_sweeps       = 2;
       data.aggregation_threshold = 0.02;
+      // (no constant modes given: the library's defaults, then the near-null space set here)
       Teuchos::ParameterList              parameters;
-      std::unique_ptr<Epetra_MultiVector> constant_modes;
-      data.set_parameters(parameters, constant_modes, augmented);
+      std::unique_ptr<Epetra_MultiVector> unused_modes;
+      data.set_parameters(parameters, unused_modes, augmented);
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension", static_cast<int>(n_modes));
       parameters.set("null space: vectors", const_cast<double *>(near_null_space.data()));

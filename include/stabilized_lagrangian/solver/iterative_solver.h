@@ -83,7 +83,7 @@ namespace StabilizedLagrangian
       /** @brief Wall time (s, this rank) of the last solve's phases. */
       struct PhaseTimes
       {
-        double amg_setup    = 0.; ///< the blocks K, B, C, D taken from J and the AMG of K
+        double amg_setup    = 0.; ///< the blocks K̃, B, C, D taken from J and the AMG of K̃
         double schur        = 0.; ///< Ŝ formed and factorised
         double krylov       = 0.; ///< GMRES with the preconditioner's applications
         double schur_solves = 0.; ///< of which the solves with the factorised Ŝ
@@ -114,7 +114,7 @@ namespace StabilizedLagrangian
       vmult(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src) const;
 
     private:
-      /** K, B, C, D from @p matrix, then the AMG of K and the factorised Ŝ. */
+      /** K̃, B, C, D from @p matrix, then the AMG of K̃ and the factorised Ŝ. */
       void
       set_up(const TrilinosWrappers::SparseMatrix &matrix);
 
@@ -142,8 +142,8 @@ namespace StabilizedLagrangian
       const bool                     higher_order_elements;
       const double                   augmentation_factor;
       const unsigned int             max_iterations;
-      TrilinosWrappers::SparseMatrix K, B, C, D, schur;
-      /** Cᵀ, and K̃ = K + Cᵀ Γ C, the displacement block of the augmented system */
+      TrilinosWrappers::SparseMatrix B, C, D, schur;
+      /** Cᵀ, and K̃ = K + Cᵀ Γ C, the displacement block of the augmented system (K is not kept) */
       TrilinosWrappers::SparseMatrix C_transposed, augmented;
       /** Γ: the weights of the multipliers' rows added to the displacement's */
       TrilinosWrappers::MPI::Vector                   augmentation;
@@ -156,7 +156,7 @@ namespace StabilizedLagrangian
       unsigned int                  iterations = 0;
       mutable PhaseTimes            times;
       std::string                   error;
-      /** whether K, B, C, D have the Newton matrix's pattern (set_up() once) */
+      /** whether K̃, B, C, D have their patterns for the Newton matrix's (set_up() once) */
       bool blocks_ready = false;
     };
   } // namespace LinearSolvers
