@@ -7,7 +7,8 @@ Usage: contrib/benchmark_two_bodies.py --executable build/stabilized_lagrangian 
                                        [--jobs N] [--output FOLDER | --doc]
 
 Runs prm/patin_deformable_block.prm and prm/two_cylinders.prm with `Automatic r_n factor` 1 and
-100, prm/ironing.prm (factor 1), and the contact patch tests prm/contact_patch_test.prm (2D) and
+100, prm/ironing.prm (factor 1; as shipped, the soft block's top the slave, and with the die as
+the slave), and the contact patch tests prm/contact_patch_test.prm (2D) and
 prm/contact_patch_test_3d.prm (3D), each with `Contact/Complementarity` pointwise and weighted (and
 weighted with `Finite element pair = Q1/P1 dual`, the scenes' Q1/P1 in the dual basis) and with
 the nested loops and the generalized Newton (all three loops folded). For each: how the run
@@ -44,6 +45,7 @@ GENERALIZED = "".join(robustness_map.nested_set(f"Nonlinear solver/{loop}/Method
 SCENES = [("patin on a deformable block", "patin_deformable_block.prm", (1, 100)),
           ("two cylinders", "two_cylinders.prm", (1, 100)),
           ("ironing", "ironing.prm", (1,)),
+          ("ironing, die as slave", "ironing.prm", (1,)),
           ("patch test 2D", "contact_patch_test.prm", (1,)),
           ("patch test 3D", "contact_patch_test_3d.prm", (1,))]
 CONDITIONS = ("pointwise", "weighted", "weighted dual")
@@ -52,8 +54,17 @@ CYLINDERS = {"E": 200000.0, "nu": 0.3, "R": 50.0, "time": 0.5}
 ALGORITHMS = ("nested", "generalized Newton")
 
 
-def scene_text(file_name, conditions, algorithm, factor):
+# prm/ironing.prm's roles (the soft block's top the slave) and the other way round
+SHIPPED_ROLES = "set Contact boundary ids = block_top\n  set Master boundary ids  = die_contact"
+DIE_AS_SLAVE = "set Contact boundary ids = die_contact\n  set Master boundary ids  = block_top"
+
+
+def scene_text(label, file_name, conditions, algorithm, factor):
     text = robustness_map.read_scene(os.path.join(tool_cli.ROOT, "prm", file_name))
+    if label.endswith("die as slave"):
+        if SHIPPED_ROLES not in text:
+            raise SystemExit(f"prm/{file_name} does not make the block's top the slave")
+        text = text.replace(SHIPPED_ROLES, DIE_AS_SLAVE)
     # ironing ships with the generalized Newton: the nested variant resets the three loops
     text += "".join(robustness_map.nested_set(f"Nonlinear solver/{loop}/Method",
                                               "newton" if algorithm != "nested" else "fixed point")
@@ -71,8 +82,10 @@ for label, file_name, factors in SCENES:
         for algorithm in ALGORITHMS:
             for factor in factors:
                 key = (label, conditions, algorithm, factor)
-                name = f"{file_name[:-4]}-{conditions.replace(' ', '-')}-{algorithm.split()[0]}-{factor}"
-                cases.append((key, scene_text(file_name, conditions, algorithm, factor), os.path.join(workdir, name)))
+                name = (f"{label.replace(' ', '-').replace(',', '')}-{conditions.replace(' ', '-')}-"
+                        f"{algorithm.split()[0]}-{factor}")
+                cases.append((key, scene_text(label, file_name, conditions, algorithm, factor),
+                              os.path.join(workdir, name)))
 case_dirs = {key: case_dir for key, _, case_dir in cases}
 rows = robustness_map.run_cases(args.executable, cases, jobs=args.jobs, timeout=1800,
                                 label=lambda key, row: f"{key}: {row['outcome']}, {row['wall_time_s']:.0f} s")

@@ -782,6 +782,19 @@ namespace StabilizedLagrangian
                         "error that a loop's error must be below. The residual estimate "
                         "overestimates the error by 3-7 (doc/error_estimator.md), so 0.02 keeps "
                         "the loops' error near a tenth of the true discretisation error.");
+      prm.declare_entry(
+          "Predictor",
+          "tangent",
+          Patterns::Selection("tangent|extrapolation"),
+          "Where each load step's iterations start. tangent: at the last converged state, "
+          "the first Newton iteration linearised about it with the step's Dirichlet "
+          "increment (the seed's start). extrapolation: at the last converged state plus "
+          "the last load step's change of every unknown (displacement, contact pressure, "
+          "friction multiplier) scaled to this step's size, so that a steady motion (a "
+          "die sliding, a load growing linearly) starts near its answer and with its "
+          "contact statuses; the Dirichlet values left over, if any, are then taken by the "
+          "tangent step. The first step of a load path, and the first after a mesh change, "
+          "start as with tangent (doc/formulation.md, \"Predictor\").");
       prm.enter_subsection("Geometry loop");
       declare_method("the pairing (closest point, normal and tangents)");
       prm.declare_entry("Maximum iterations", "10", Patterns::Integer(1));
@@ -843,6 +856,7 @@ namespace StabilizedLagrangian
       max_newton_per_step = prm.get_integer("Maximum Newton iterations per load step");
       adaptive_stopping   = prm.get("Stopping") == "adaptive";
       adaptive_fraction   = prm.get_double("Adaptive stopping fraction");
+      extrapolate         = prm.get("Predictor") == "extrapolation";
       prm.enter_subsection("Geometry loop");
       geometry_method         = method();
       geometry_max_iterations = prm.get_integer("Maximum iterations");

@@ -9,8 +9,8 @@ both must give the same pairings, hence the same iterates: the runs are compared
 step (Newton iterations equal; every force, gap, pressure and traction to 1e-9 of its
 column's scale: the two runs differ only by the order of sums, while one wrong pairing of
 a contact point moves them by far more), on
-- prm/ironing.prm (2D, generalized Newton): the die slides 10 mm, twenty of the block's
-  cells, over the master; the ranks' holdings must grow along the way, and no rank may
+- prm/ironing.prm (2D, generalized Newton) with the die as the slave: the die slides 10 mm,
+  twenty of the block's cells, over the master; the ranks' holdings must grow along the way, and no rank may
   hold the whole master surface;
 - the same with a search distance of 0.3 mm (about half a master face): more growth,
   fewer faces held, the same result where points touch (gap below the distance);
@@ -99,7 +99,12 @@ def check_holdings(name, summary, growths_expected):
 
 
 # --- ironing (2D): large sliding -------------------------------------------------------
+# the die as the slave: its points travel over the block's faces, the search's hard case
+SCENE_ROLES = ("set Contact boundary ids = block_top\n  set Master boundary ids  = die_contact")
 ironing = sltest.read_prm(os.path.join(prm_dir, "ironing.prm"))
+if SCENE_ROLES not in ironing:
+    raise SystemExit("FAIL: prm/ironing.prm does not make the block's top the slave")
+ironing = ironing.replace(SCENE_ROLES, "set Contact boundary ids = die_contact\n  set Master boundary ids  = block_top")
 runs = {mode: run("ironing", ironing, mode) for mode in ("distributed", "replicated")}
 if all(runs.values()):
     compare("ironing", runs["distributed"], runs["replicated"])

@@ -17,7 +17,7 @@ rank and on 2 ranks, on quadrilaterals and on triangles (2 ranks), and a Hertz c
 refinement (the mesh is rebuilt from the checkpoint's refinements), and the
 patin on a deformable block with `Complementarity = weighted` (the contact
 faces' segments of the checkpoint's configuration, the nodal statuses and
-thresholds).
+thresholds) and `Predictor = extrapolation` (the last step's increment).
 
 Then a damaged checkpoint is refused with a clear message and a non-zero
 exit: a truncated rank file, a resume on another number of ranks, a changed
@@ -158,10 +158,13 @@ scenes = {
     "hertz_adaptive": (scene_text("hertz_cylinder.prm", 4,
                                   sltest.nested_set("Adaptive refinement/Cycles", 2)), 1,
                        "the last cycle"),
-    # two bodies: the segments of the checkpoint's configuration, and the weighted
-    # conditions' nodal statuses and thresholds
+    # two bodies: the segments of the checkpoint's configuration, the weighted
+    # conditions' nodal statuses and thresholds, and the extrapolating predictor's
+    # last increment
     "weighted_two_bodies_1_rank": (scene_text("patin_deformable_block.prm", 1,
-                                              sltest.nested_set("Contact/Complementarity", "weighted")), 1, ""),
+                                              sltest.nested_set("Contact/Complementarity", "weighted")
+                                              + sltest.nested_set("Nonlinear solver/Predictor",
+                                                                  "extrapolation")), 1, ""),
 }
 for name, (text, ranks, note) in scenes.items():
     full, interrupted = f"{workdir}/{name}/full", f"{workdir}/{name}/killed"

@@ -302,17 +302,19 @@ namespace StabilizedLagrangian
      */
     struct NonlinearSolver
     {
-      LoopMethod        geometry_method;
-      LoopMethod        friction_method;
-      LoopMethod        status_method;
-      unsigned int      max_newton_per_step; ///< budget of Newton iterations per load step
-      unsigned int      geometry_max_iterations;
-      double            geometry_tolerance;
-      unsigned int      friction_max_iterations;
-      double            friction_tolerance;
-      unsigned int      status_max_iterations;
-      unsigned int      newton_max_iterations;
-      unsigned int      line_search_steps; ///< halvings of the Newton step, 0: none
+      LoopMethod   geometry_method;
+      LoopMethod   friction_method;
+      LoopMethod   status_method;
+      unsigned int max_newton_per_step; ///< budget of Newton iterations per load step
+      unsigned int geometry_max_iterations;
+      double       geometry_tolerance;
+      unsigned int friction_max_iterations;
+      double       friction_tolerance;
+      unsigned int status_max_iterations;
+      unsigned int newton_max_iterations;
+      unsigned int line_search_steps; ///< halvings of the Newton step, 0: none
+      /** `Predictor = extrapolation`: a step starts from the last one's change, scaled */
+      bool              extrapolate = false;
       double            newton_tolerance;
       ResidualCriterion newton_criterion;
       /** `Stopping = adaptive`: Newton also stops at a fraction of the estimated error */

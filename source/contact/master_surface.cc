@@ -465,8 +465,21 @@ namespace StabilizedLagrangian
                   for (unsigned int b = 0; b < dim - 1; ++b)
                     JtJ[a][b] = dx[a] * dx[b];
                 }
-              const Tensor<1, dim - 1> step = -(invert(JtJ) * Jtr);
-              Point<dim - 1>           next = xi + step;
+              Tensor<1, dim - 1> step = -(invert(JtJ) * Jtr);
+              // A coordinate at the face's edge whose step leaves the face is
+              // held there and the others minimise along the edge (projected
+              // Gauss–Newton): clamping the full step instead would stop where
+              // τ_b·(x(ξ) − x) ≠ 0 on a face whose tangents are not orthogonal.
+              bool held[dim - 1], any_held = false;
+              for (unsigned int a = 0; a < dim - 1; ++a)
+                {
+                  held[a] = (xi[a] <= 0. && step[a] < 0.) || (xi[a] >= 1. && step[a] > 0.);
+                  any_held |= held[a];
+                }
+              if (any_held)
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  step[a] = held[a] ? 0. : -Jtr[a] / JtJ[a][a];
+              Point<dim - 1> next = xi + step;
               for (unsigned int a = 0; a < dim - 1; ++a)
                 next[a] = std::clamp(next[a], 0., 1.);
               const double change = next.distance(xi);

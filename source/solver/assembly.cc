@@ -480,7 +480,7 @@ namespace StabilizedLagrangian
                              *partner,
                              state.pairing,
                              linearise_geometry ? &k.step_increment : nullptr,
-                             state.pairing.gap(k.position));
+                             k.position - state.pairing.master_point);
             if (weighted)
               {
                 local.add_weighted_residual(

@@ -28,7 +28,7 @@ namespace StabilizedLagrangian
 
   namespace
   {
-    constexpr char magic[] = "stabilized_lagrangian checkpoint 2";
+    constexpr char magic[] = "stabilized_lagrangian checkpoint 3";
 
     /** Binary writer of trivially copyable values and vectors of them. */
     class Writer
@@ -220,7 +220,11 @@ namespace StabilizedLagrangian
     std::vector<double> owned;
     for (const auto index : locally_owned)
       owned.push_back(solution(index));
+    // the predictor's slope (`Predictor = extrapolation`)
+    for (const auto index : locally_owned)
+      owned.push_back(last_increment(index));
     out.put(owned);
+    out.put(last_step_size);
     // the contact faces' segments (their number of points sets the states' layout)
     std::vector<double> segments;
     for (const auto &face : contact_faces)
@@ -444,12 +448,16 @@ namespace StabilizedLagrangian
     in.get(last_normal_force);
     std::vector<double> owned;
     in.get(owned);
-    AssertThrow(owned.size() == locally_owned.n_elements(),
+    AssertThrow(owned.size() == 2 * locally_owned.n_elements(),
                 ExcMessage("the checkpoint's solution does not fit this mesh"));
     unsigned int k = 0;
     for (const auto index : locally_owned)
       solution(index) = owned[k++];
+    for (const auto index : locally_owned)
+      last_increment(index) = owned[k++];
     solution.compress(VectorOperation::insert);
+    last_increment.compress(VectorOperation::insert);
+    in.get(last_step_size);
     update_ghosts();
     step_start = ghosted_solution;
     std::vector<double> segments;

@@ -134,6 +134,8 @@ namespace StabilizedLagrangian
     solution.reinit(locally_owned, mpi_communicator);
     ghosted_solution.reinit(locally_owned, locally_relevant, mpi_communicator);
     step_start.reinit(locally_owned, locally_relevant, mpi_communicator);
+    last_increment.reinit(locally_owned, mpi_communicator);
+    last_step_size = 0.;
     internal_force.reinit(locally_owned, mpi_communicator);
     contact_residual.reinit(locally_owned, mpi_communicator);
     external_force.reinit(locally_owned, mpi_communicator);

@@ -210,6 +210,7 @@ namespace StabilizedLagrangian
         Timer step_clock;
         time = saved.time + step_size;
         partner->set_time(saved.time, time);
+        extrapolate_last_step(step_size);
         apply_dirichlet_values(time);
         if (!solve_load_step(stats))
           {
@@ -267,6 +268,7 @@ namespace StabilizedLagrangian
     accumulated_slip.clear();
     steps.restart();
     path_start_work = work;
+    last_step_size  = 0.;
   }
 
   template <int dim>
@@ -352,6 +354,10 @@ namespace StabilizedLagrangian
     path.most_points_in_contact = std::max(path.most_points_in_contact, stats.points_in_contact);
     path.contact_point_count    = stats.contact_points;
     output_results(stats.step, time);
+    for (const auto index : locally_owned)
+      last_increment(index) = solution(index) - step_start(index);
+    last_increment.compress(VectorOperation::insert);
+    last_step_size  = stats.step_size;
     step_start      = ghosted_solution;
     stats.wall_time = step_clock.wall_time();
     statistics.write(stats);
@@ -598,6 +604,17 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::extrapolate_last_step(const double step_size)
+  {
+    if (!solver_parameters.extrapolate || last_step_size <= 0.)
+      return;
+    // u⁰_{n+1} = u_n + (Δt_{n+1}/Δt_n)(u_n − u_{n−1}), multipliers included
+    solution.add(step_size / last_step_size, last_increment);
+    update_ghosts();
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::apply_dirichlet_values(const double t)
   {
     std::map<types::global_dof_index, double> values;
@@ -627,6 +644,15 @@ namespace StabilizedLagrangian
         increment(index) = value - solution(index);
     increment.compress(VectorOperation::insert);
     hanging_constraints.distribute(increment);
+    // After an extrapolation, what is left of the Dirichlet increment of a
+    // steady motion is round-off: it is added to the iterate directly.
+    if (solver_parameters.extrapolate && last_step_size > 0. &&
+        increment.linfty_norm() <= 1e-10 * last_increment.linfty_norm())
+      {
+        solution += increment;
+        update_ghosts();
+        increment = 0.;
+      }
     dirichlet_increment_nonzero = increment.linfty_norm() > 0.;
     dirichlet_increment.reinit(locally_owned, locally_relevant, mpi_communicator);
     dirichlet_increment = increment;
@@ -659,6 +685,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::write_run_summary(unsigned int, double, const WorkCounters &) \
       const;                                                                                       \
   template void ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;        \
+  template void ContactProblem<dim>::extrapolate_last_step(double);                                \
   template void ContactProblem<dim>::apply_dirichlet_values(double);
 
   SL_INSTANTIATE(2)

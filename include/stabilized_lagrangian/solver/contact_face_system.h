@@ -79,6 +79,7 @@ namespace StabilizedLagrangian
         dofs.insert(dofs.end(), m_dofs.begin(), m_dofs.end());
         phi.resize(n_d);
         normal_shape.resize(n_d);
+        gap_shape.resize(n_d);
         tangential_shape.resize(n_d);
         slip_derivative.resize(n_d);
         normal_variation.resize(n_d);
@@ -92,9 +93,9 @@ namespace StabilizedLagrangian
        * The shape functions at point @p q: φ_j of the displacements (slave,
        * then partner), φ_j·n, t_α·φ_j, ∂Δs/∂u_j, and ψ of the multipliers.
        * When the pairing is linearised (@p step_increment given: the relative
-       * Δs vector; @p gap: g_n at the point), also how n, t_α and, with a
-       * deformable master, ξ move with each DoF (pairing_variations()), and
-       * ∂Δs/∂u_j includes them.
+       * Δs vector; @p offset: x¹ − x²(ξ), whose normal part is g_n), also how
+       * n, t_α and, with a deformable master, ξ move with each DoF
+       * (pairing_variations()), and ∂Δs/∂u_j and ∂g_n/∂u_j include them.
        */
       void
       set_shapes(const FEFaceValues<dim>     &u_values,
@@ -103,7 +104,7 @@ namespace StabilizedLagrangian
                  const Contact::Partner<dim> &partner,
                  const Contact::Pairing<dim> &pairing,
                  const Tensor<1, dim>        *step_increment,
-                 const double                 gap = 0.)
+                 const Tensor<1, dim>        &offset = Tensor<1, dim>())
       {
         for (unsigned int i = 0; i < n_d; ++i)
           {
@@ -125,11 +126,12 @@ namespace StabilizedLagrangian
         for (unsigned int i = 0; i < n_d; ++i)
           {
             normal_shape[i]     = phi[i] * pairing.normal;
+            gap_shape[i]        = normal_shape[i];
             tangential_shape[i] = pairing.tangential_components(phi[i]);
             slip_derivative[i]  = tangential_shape[i];
           }
         if (step_increment)
-          pairing_variations(pairing, *step_increment, gap);
+          pairing_variations(pairing, *step_increment, offset);
         for (unsigned int a = 0; a < n_m; ++a)
           psi[a] = m_shapes(a, q);
       }
@@ -139,22 +141,34 @@ namespace StabilizedLagrangian
        * per DoF j, δn_j, δt_α,j and δξ_j, and the slip's convective terms.
        * A rigid obstacle: δn = ∂n/∂x φ_j, ξ does not count. A deformable
        * master: the closest-point condition (x¹ − x²(ξ))·τ_b = 0 gives
-       * A δξ = τ·(δx¹ − N δu²) + g n·(∂N δu²), A_ab = τ_a·τ_b − g n·x²,ab;
+       * A δξ = τ·(δx¹ − N δu²) + (x¹ − x²)·(∂N δu²), A_ab = τ_a·τ_b −
+       * (x¹ − x²)·x²,ab, where x¹ − x² = g n at an interior closest point;
        * then δτ_a = ∂_a N δu² + x²,ab δξ_b and δn = −m^ab (n·δτ_a) τ_b.
+       * Where the closest point is held at the face's edge (ξ_a at 0 or 1:
+       * a slave point beyond the master's end, or in the shadow of a convex
+       * kink), that ξ_a stays there (δξ_a = 0, its condition dropped),
+       * x¹ − x² has a tangential part, and the gap g_n = n·(x¹ − x²) moves
+       * with n too: δg = n·(δx¹ − N δu²) + δn·(x¹ − x²).
        */
       void
       pairing_variations(const Contact::Pairing<dim> &pairing,
                          const Tensor<1, dim>        &slip_vector,
-                         const double                 gap)
+                         const Tensor<1, dim>        &offset)
       {
-        const bool         deformable         = pairing.master_face >= 0;
+        const bool deformable = pairing.master_face >= 0;
+        bool       held[dim - 1];
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          held[a] = deformable && (pairing.master_reference_point[a] <= 0. ||
+                                   pairing.master_reference_point[a] >= 1.);
         const auto         tangent_derivative = Contact::tangent_basis_derivative(pairing.normal);
         Tensor<2, dim - 1> metric, A;
         for (unsigned int a = 0; a < dim - 1; ++a)
           for (unsigned int b = 0; b < dim - 1; ++b)
             {
               metric[a][b] = pairing.surface_tangents[a] * pairing.surface_tangents[b];
-              A[a][b] = metric[a][b] - gap * (pairing.normal * pairing.surface_curvature[a][b]);
+              A[a][b]      = metric[a][b] - offset * pairing.surface_curvature[a][b];
+              if (held[a] || held[b])
+                A[a][b] = a == b ? 1. : 0.;
             }
         const Tensor<2, dim - 1> metric_inverse =
             deformable ? invert(metric) : Tensor<2, dim - 1>();
@@ -169,10 +183,12 @@ namespace StabilizedLagrangian
               {
                 Tensor<1, dim - 1> rhs;
                 for (unsigned int b = 0; b < dim - 1; ++b)
-                  rhs[b] = pairing.surface_tangents[b] * phi[j] +
-                           (partner_dof ? gap * partner_gradient[j][b] *
-                                              pairing.normal[partner_component[j]]
-                                        : 0.);
+                  rhs[b] =
+                      held[b]
+                          ? 0.
+                          : pairing.surface_tangents[b] * phi[j] +
+                                (partner_dof ? partner_gradient[j][b] * offset[partner_component[j]]
+                                             : 0.);
                 xi_variation[j] = A_inverse * rhs;
                 Tensor<1, dim> d_tau[dim - 1];
                 for (unsigned int a = 0; a < dim - 1; ++a)
@@ -187,6 +203,8 @@ namespace StabilizedLagrangian
                   for (unsigned int b = 0; b < dim - 1; ++b)
                     normal_variation[j] -= metric_inverse[a][b] * (pairing.normal * d_tau[a]) *
                                            pairing.surface_tangents[b];
+                // (x¹ − x²) = g n at an interior closest point, and δn·n = 0
+                gap_shape[j] = normal_shape[j] + normal_variation[j] * offset;
               }
             for (unsigned int a = 0; a < dim - 1; ++a)
               {
@@ -265,7 +283,7 @@ namespace StabilizedLagrangian
         for (unsigned int i = 0; i < n_d; ++i)
           for (unsigned int j = 0; j < n_d; ++j)
             {
-              double value = normal_stiffness * normal_shape[i] * normal_shape[j] +
+              double value = normal_stiffness * normal_shape[i] * gap_shape[j] +
                              tangential_shape[i] * (tangential_stiffness * slip_derivative[j]);
               if (linearise_geometry)
                 value += geometric_stiffness(normal_traction, tangential_traction, pairing, i, j);
@@ -300,7 +318,7 @@ namespace StabilizedLagrangian
                                             : tangential_shape[i] * friction_coupling[c - 1]);
               // multiplier rows, u columns
               matrix(n_d + b, i) += w * psi[b] *
-                                    (c == 0 ? pressure_coupling * normal_shape[i]
+                                    (c == 0 ? pressure_coupling * gap_shape[i]
                                             : friction_coupling[c - 1] * slip_derivative[i]);
             }
         for (unsigned int a = 0; a < n_m; ++a)
@@ -369,7 +387,7 @@ namespace StabilizedLagrangian
                       w * psi[b] *
                       (-normal_shape[i] -
                        node.multiplier_traction_pressure_derivative() * tangential_shape[i]);
-                  matrix(n_d + b, i) += w * psi[b] * node.pressure_coupling() * normal_shape[i];
+                  matrix(n_d + b, i) += w * psi[b] * node.pressure_coupling() * gap_shape[i];
                 }
               else
                 {
@@ -403,8 +421,9 @@ namespace StabilizedLagrangian
       FullMatrix<double>                              matrix;
       Vector<double>                                  rhs, length_weights;
       // at the current point
-      std::vector<Tensor<1, dim>>          phi;
-      std::vector<double>                  normal_shape, psi;
+      std::vector<Tensor<1, dim>> phi;
+      /** φ_j·n, and ∂g_n/∂u_j (φ_j·n, plus δn_j·(x¹ − x²) at a held closest point) */
+      std::vector<double>                  normal_shape, gap_shape, psi;
       std::vector<Tensor<1, dim - 1>>      tangential_shape, slip_derivative;
       std::vector<types::global_dof_index> partner_dofs;
       std::vector<unsigned int>            partner_components;

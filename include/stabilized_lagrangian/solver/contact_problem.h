@@ -609,6 +609,13 @@ namespace StabilizedLagrangian
     /** The work done since the load path began, failed attempts included. */
     WorkCounters
     work_on_path() const;
+    /**
+     * `Nonlinear solver/Predictor = extrapolation`: move the iterate by the
+     * last accepted step's change of every unknown, scaled to @p step_size
+     * (doc/formulation.md, "Predictor").
+     */
+    void
+    extrapolate_last_step(const double step_size);
     void
     apply_dirichlet_values(const double time);
     void
@@ -1754,6 +1761,10 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector                        solution; ///< owned
     TrilinosWrappers::MPI::Vector ghosted_solution; ///< relevant, kept in sync with solution
     TrilinosWrappers::MPI::Vector step_start;       ///< relevant, solution at the step start
+    /** owned: the last accepted load step's change of every unknown (the predictor's slope) */
+    TrilinosWrappers::MPI::Vector last_increment;
+    /** the size of that step; 0 before a load path's first step and after a mesh change */
+    double                        last_step_size = 0.;
     TrilinosWrappers::MPI::Vector residual_scaling; ///< 1, r_n or r_t per owned row
     /** owned: the nodal internal forces ∫σ:∇φ_i of the last assembly (reactions included) */
     TrilinosWrappers::MPI::Vector internal_force;
