@@ -9,7 +9,11 @@ the refined band). Checks: the adapted mesh has multiplier DoFs at hanging
 nodes; it resolves the active set like the finer uniform mesh (same number of
 contact points in contact); its contact force agrees with the finer uniform
 one within the discretisation error, estimated as |P3 - P2|; and it is the
-same on 2 MPI ranks (1e-8 relative: only round-off differs)."""
+same on 2 MPI ranks (1e-8 relative: only round-off differs).
+
+2D: the coarse Hertz cylinder indented by 0.05 mm, whose contact starts at the single node below
+the tip (an active zone of size 0): each cycle refines the cells around it,
+so the cells grow and the contact zone is resolved by more points."""
 import os
 import sys
 import sltest
@@ -40,4 +44,20 @@ check(abs(Pa - P3) <= abs(P3 - P2),
       f"<= discretisation error |P3 - P2| / P3 = {abs(P3 - P2) / P3:.2%}")
 Pa2, _, _ = run("adaptive-2-ranks", 2, 1, ranks=2)
 check(abs(Pa2 - Pa) <= 1e-8 * Pa, f"2 ranks: {Pa2:.6f} N = 1 rank {Pa:.6f} N")
+
+# the contact at a single vertex (a small indentation: only the node below the
+# tip touches on the coarse mesh): the cells around it are refined at every cycle
+text = sltest.coarse_hertz() + "".join(sltest.nested_set(path, value) for path, value in (
+    ("Boundary conditions/Dirichlet 1/Displacement/Function constants", "delta=0.05"),
+    ("Load stepping/Number of load steps", 1),
+    ("Adaptive refinement/Cycles", 3),
+    ("Adaptive refinement/Criterion", "active set")))
+if sltest.run_checked(executable, text, f"{workdir}/point-contact", check, "2D point contact"):
+    cycles = sltest.read_csv(f"{workdir}/point-contact/output/refinement_cycles.csv")
+    cells = [int(row["cells"]) for row in cycles]
+    check(all(b > a for a, b in zip(cells, cells[1:])), f"2D point contact: cells grow every cycle: {cells}")
+    first = sltest.read_csv(f"{workdir}/point-contact/output/cycle-0/statistics.csv")[-1]
+    last = sltest.read_csv(f"{workdir}/point-contact/output/statistics.csv")[-1]
+    check(int(last["points_in_contact"]) > int(first["points_in_contact"]),
+          f"2D point contact: points in contact {first['points_in_contact']} -> {last['points_in_contact']}")
 check.finish()

@@ -471,8 +471,10 @@ namespace StabilizedLagrangian
       }
     // the band scales with the size of the active zone (its bounding box's
     // diameter), so the material below the contact, where the stresses vary
-    // over that size, is refined too; the half cell diameter keeps the cells
-    // that contain active points
+    // over that size, is refined too; the cell's radius about its centre
+    // keeps the cells that contain or touch active points. A contact that
+    // starts at a single point (a zone of size 0) sits on a vertex, exactly
+    // one radius from each cell around it: the tolerance keeps those cells.
     const auto   box = BoundingBox<dim>(points);
     const double zone_size =
         box.get_boundary_points().first.distance(box.get_boundary_points().second);
@@ -480,11 +482,14 @@ namespace StabilizedLagrangian
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          const Point<dim> centre = cell->center();
+          double           radius = 0.;
+          for (const unsigned int v : cell->vertex_indices())
+            radius = std::max(radius, centre.distance(cell->vertex(v)));
           std::vector<Point<dim>> nearest;
-          tree.query(boost::geometry::index::nearest(cell->center(), 1),
-                     std::back_inserter(nearest));
-          if (cell->center().distance(nearest[0]) <=
-              adaptive_refinement.band * zone_size + 0.5 * cell->diameter())
+          tree.query(boost::geometry::index::nearest(centre, 1), std::back_inserter(nearest));
+          if (centre.distance(nearest[0]) <=
+              adaptive_refinement.band * zone_size + radius * (1. + 1e-10))
             cell->set_refine_flag();
         }
   }
