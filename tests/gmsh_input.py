@@ -10,7 +10,10 @@ its face named `top` has the contact pressure p on its face named `bottom`; a
 mistyped group name in the contact or a boundary-condition entry stops the run
 with exit 1 and a message naming the entry and listing the groups the file has;
 a missing mesh file is refused with a message; a mesh of triangles runs with
-the P1/P1 pair and is refused with a Q pair, by a message naming the P pairs."""
+the P1/P1 pair and is refused with a Q pair, by a message naming the P pairs;
+two bodies of tetrahedra are refused (the master surface holds line and
+quadrilateral faces) with the same message whether their surfaces are given by
+name or by id."""
 import os
 import sys
 import sltest
@@ -140,4 +143,69 @@ check("P1/P1" in text, "the scene asks for P1/P1")
 code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, os.path.join(workdir, "triangles-p1"),
                        expect_success=False)
 check(code == 0, f"the same mesh of triangles with P1/P1: exit {code}")
+
+# two bodies of tetrahedra: the master surface holds line and quadrilateral faces only, so the
+# scene is refused with the same message whether its surfaces are given by name or by id (by
+# name, the master surface was built from triangles and the run died of a segfault)
+tetrahedra_geo = """SetFactory("OpenCASCADE");
+Geometry.AutoCoherence = 0;  // two bodies: the interface nodes distinct
+Mesh.CharacteristicLengthMax = 2.5;
+Box(1) = {0, 0, -5, 10, 10, 5};  // surfaces 1 to 6: x min, x max, y min, y max, z min, z max
+Box(2) = {0, 0, 0, 10, 10, 5};   // surfaces 7 to 12
+Physical Surface("blk_bottom", 1) = {5};
+Physical Surface("blk_contact", 2) = {6};
+Physical Surface("cyl_contact", 7) = {11};
+Physical Surface("cyl_top", 8) = {12};
+Physical Volume("block", 1) = {1};
+Physical Volume("punch", 2) = {2};
+"""
+os.makedirs(os.path.join(workdir, "tetrahedra"), exist_ok=True)
+geo = os.path.join(workdir, "tetrahedra", "two_bodies.geo")
+with open(geo, "w") as f:
+    f.write(tetrahedra_geo)
+
+
+def two_tetrahedral_bodies(slave, master, bottom, top):
+    return f"""set Dimension = 3
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = {geo}
+  end
+end
+subsection Contact
+  set Contact boundary ids = {slave}
+  set Master boundary ids  = {master}
+  set Finite element pair  = P1/P1
+  set Contact quadrature   = Gauss
+end
+subsection Boundary conditions
+  subsection Dirichlet bottom
+    set Boundary id = {bottom}
+    set Components  = x, y, z
+  end
+  subsection Neumann top
+    set Boundary id = {top}
+    subsection Traction
+      set Function expression = 0; 0; -10*t
+      set Variable names      = x,y,z,t
+    end
+  end
+end
+subsection Load stepping
+  set Number of load steps = 1
+end
+"""
+
+
+for name, surfaces in (("by name", ("cyl_contact", "blk_contact", "blk_bottom", "cyl_top")),
+                       ("by id", (7, 2, 1, 8))):
+    code, log = sltest.run(executable, two_tetrahedral_bodies(*surfaces) + sltest.QUIET_OUTPUT,
+                           os.path.join(workdir, "tetrahedra", name.replace(" ", "_")),
+                           expect_success=False)
+    check(code == 1 and "Master boundary ids" in log and "master surface of triangle faces" in log,
+          f"two bodies of tetrahedra, surfaces {name}: exit {code} (a signal is negative), refused "
+          f"with the master surface's message")
+    if code != 1:
+        print(log[-1500:])
 check.finish()

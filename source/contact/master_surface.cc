@@ -4,6 +4,7 @@
 #include <deal.II/fe/fe.h>
 
 #include <stabilized_lagrangian/contact/master_surface.h>
+#include <stabilized_lagrangian/plugins.h>
 
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
@@ -90,6 +91,13 @@ namespace StabilizedLagrangian
     {
       AssertThrow(search_distance > 0., ExcInternalError());
       const FiniteElement<dim> &fe = dof_handler.get_fe();
+      // a face is multilinear in its 2^(dim-1) vertices; every rank has the same
+      // element, so every rank refuses together
+      if (!fe.reference_cell().face_reference_cell(0).is_hyper_cube())
+        throw InputError("Contact/Master boundary ids: contact between two deformable bodies "
+                         "meshed with tetrahedra needs a master surface of triangle faces, which "
+                         "is not built yet (the master surface holds line and quadrilateral "
+                         "faces); in 3D mesh the bodies with hexahedra.");
       // the node of FE_Q<dim−1> at each face DoF's support point
       const std::vector<Point<dim - 1>> &face_points = fe.get_unit_face_support_points();
       const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
