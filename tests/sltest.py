@@ -35,6 +35,19 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=120
     return result.returncode, output
 
 
+def cpu_flags():
+    """The instruction-set flags of this processor (/proc/cpuinfo), an empty set where
+    the file does not say."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("flags"):
+                    return set(line.split(":", 1)[1].split())
+    except OSError:
+        pass
+    return set()
+
+
 def nested_set(path, value):
     """'Section/Sub/Entry', value -> the prm text setting it in nested subsections."""
     *sections, entry = path.split("/")

@@ -1,6 +1,9 @@
 #include <deal.II/physics/transformations.h>
 
 #include <stabilized_lagrangian/contact/partner.h>
+#include <stabilized_lagrangian/plugins.h>
+
+#include <sstream>
 
 namespace StabilizedLagrangian
 {
@@ -25,6 +28,26 @@ namespace StabilizedLagrangian
           pairing.tangent_gradients[a] = dt_dn[a] * pairing.normal_gradient;
       }
     } // namespace
+
+    template <int dim>
+    void
+    ObstacleMotion<dim>::check_centre(const Point<dim> &body_point,
+                                      const double      body_diameter) const
+    {
+      const double distance = centre.distance(body_point);
+      if (!(distance <= centre_reach * body_diameter))
+        {
+          std::ostringstream message;
+          message << "Obstacle/Motion/Rotation centre = " << centre << " lies " << distance
+                  << " mm from the bodies, more than " << centre_reach
+                  << " times their diameter (" << body_diameter
+                  << " mm): the obstacle's turned points would carry round-off larger than "
+                     "the contact's touching tolerance (1e-12 of the diameter). Give a centre "
+                     "within "
+                  << centre_reach * body_diameter << " mm of the bodies.";
+          throw InputError(message.str());
+        }
+    }
 
     template <int dim>
     RigidMotion<dim>

@@ -34,6 +34,39 @@ namespace StabilizedLagrangian
   namespace
   {
     /**
+     * DataOut that can say which of its fields holds a value a VTU file
+     * cannot carry: the patches store single precision, so a finite double
+     * beyond 3.4e38 (an absurd stiffness times a strain) becomes inf, and a
+     * NaN stays one. Nothing of the kind may reach a file (DESIGN.md §8).
+     */
+    template <int dim> class CheckedDataOut : public DataOut<dim>
+    {
+    public:
+      /**
+       * @brief The name of the first field with a value that is not finite in
+       * the patches of any rank, or an empty string (collective).
+       */
+      std::string
+      non_finite_field(const MPI_Comm communicator) const
+      {
+        const std::vector<std::string> names = this->get_dataset_names();
+        std::string                    field;
+        for (const auto &patch : this->get_patches())
+          for (unsigned int row = 0; row < patch.data.n_rows() && field.empty(); ++row)
+            for (unsigned int point = 0; point < patch.data.n_cols(); ++point)
+              if (!std::isfinite(patch.data(row, point)))
+                {
+                  field = row < names.size() ? names[row] : "the vertex coordinates";
+                  break;
+                }
+        for (const auto &name : Utilities::MPI::all_gather(communicator, field))
+          if (!name.empty())
+            return name;
+        return "";
+      }
+    };
+
+    /**
      * Cauchy stress tensor and von Mises stress, averaged over the quadrature
      * points of each cell where the history variables live (plane strain:
      * the out-of-plane stress enters the von Mises stress).
@@ -478,7 +511,7 @@ namespace StabilizedLagrangian
         field_dofs.locally_owned_dofs(), field_relevant, mpi_communicator);
     vertex_ghosted = vertex_values;
 
-    DataOut<dim>                                                                data_out;
+    CheckedDataOut<dim>                                                         data_out;
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_kind(
         dim, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(
@@ -514,6 +547,15 @@ namespace StabilizedLagrangian
       error_indicators.reinit(triangulation.n_active_cells());
     data_out.add_data_vector(error_indicators, "error_indicator_sqrtNmm");
     data_out.build_patches(fe_pair->displacement_degree());
+    const std::string non_finite = data_out.non_finite_field(mpi_communicator);
+    if (!non_finite.empty())
+      throw std::runtime_error(
+          "the solution of step " + std::to_string(step) + " (t = " + std::to_string(t) +
+          ") is not written: its field " + non_finite +
+          " holds a value that is not finite or beyond the single precision of a VTU file "
+          "(3.4e38). Check the magnitudes of the input (Young's moduli, loads, r_n and r_t): "
+          "their products must stay within that range. The earlier steps are in " +
+          directory + ".");
     std::string record;
     try
       {

@@ -559,6 +559,10 @@ namespace StabilizedLagrangian
     // so forces below those that displace a node of the stiffest, smallest
     // cell by a fraction force_scale_floor of the largest displacement count
     // as zero (doc/formulation.md).
+    // The displacement yardstick is the iterate's, capped by the scene's
+    // extent: a diverged iterate (a node flung far away) may not make its own
+    // residual look small.
+    largest[4] = bounds.displacement_scale(largest[4]);
     largest[1] = std::max(largest[1], force_scale_floor * nodal_stiffness * largest[4]);
     // a zero residual is converged even where its scale is zero (a body at rest)
     const auto ratio = [](const double value, const double scale) {

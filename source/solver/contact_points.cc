@@ -416,15 +416,16 @@ namespace StabilizedLagrangian
     // by a vertex placed 1e-14 mm above it must start in contact, as one at
     // exactly zero does, or a load-controlled body has no support at all.
     const double gap = state.pairing.gap(k.position);
-    return Contact::is_in_contact(Contact::augmented_pressure(
-        k.contact_pressure, std::abs(gap) <= touching_gap ? 0. : gap, contact_parameters.r_n));
+    return Contact::is_in_contact(
+        Contact::augmented_pressure(k.contact_pressure, status_gap(gap), contact_parameters.r_n));
   }
 
   template <int dim>
   double
   ContactProblem<dim>::threshold_pressure(const double contact_pressure) const
   {
-    return contact_pressure > negligible_pressure ? contact_pressure : 0.;
+    return contact_pressure > negligible_pressure ? contact_pressure
+                                                  : contact_start.provisional_pressure;
   }
 
   // Explicit instantiation of the members defined in this file (the class

@@ -106,6 +106,17 @@ namespace StabilizedLagrangian
     TimerOutput::Scope scope(timer, "setup");
     make_grid();
     setup_after_refinement();
+    if (partner->is_rigid())
+      {
+        // the bodies' bounding box over all ranks
+        const auto box = GridTools::compute_bounding_box(triangulation);
+        Point<dim> middle;
+        for (unsigned int d = 0; d < dim; ++d)
+          middle[d] =
+              0.5 * (Utilities::MPI::min(box.get_boundary_points().first[d], mpi_communicator) +
+                     Utilities::MPI::max(box.get_boundary_points().second[d], mpi_communicator));
+        obstacle_motion->check_centre(middle, GridTools::diameter(triangulation));
+      }
     // a flat obstacle in small strain never moves the pairing; a frictionless
     // or Tresca law never moves the threshold
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
@@ -154,6 +165,7 @@ namespace StabilizedLagrangian
     nodal_stiffness     = E_max * std::pow(Utilities::MPI::min(h_min, mpi_communicator), dim - 2.);
     negligible_pressure = negligible_pressure_fraction * E_max;
     touching_gap        = touching_gap_fraction * GridTools::diameter(triangulation);
+    bounds.set_body_diameter(GridTools::diameter(triangulation));
     setup_dofs();
     free_rigid_motions = rigid_motions_left_free();
     setup_contact_points();

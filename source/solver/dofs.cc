@@ -44,6 +44,18 @@ namespace StabilizedLagrangian
           weights[k] *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
       return weights;
     }
+
+    /** The DoFs of component @p c on boundary @p id (those this rank sees). */
+    template <int dim>
+    IndexSet
+    boundary_component_dofs(const DoFHandler<dim>   &dof_handler,
+                            const types::boundary_id id,
+                            const unsigned int       c)
+    {
+      ComponentMask component(dim, false);
+      component.set(c, true);
+      return DoFTools::extract_boundary_dofs(dof_handler, component, {id});
+    }
   } // namespace
 
   template <int dim>
@@ -463,9 +475,7 @@ namespace StabilizedLagrangian
       return;
     const IndexSet hanging     = DoFTools::extract_hanging_node_dofs(dof_handler_u);
     const auto     on_boundary = [&](const types::boundary_id id, const unsigned int c) {
-      ComponentMask component(dim, false);
-      component.set(c, true);
-      return DoFTools::extract_boundary_dofs(dof_handler_u, component, {id});
+      return boundary_component_dofs(dof_handler_u, id, c);
     };
     for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
       {
@@ -489,6 +499,21 @@ namespace StabilizedLagrangian
                                        ", which would hold the plate; leave that component "
                                        "out of one of them.");
                   }
+              // a node tied to two plates would make them one (each plate's
+              // motion is its reference DoFs, which that node cannot follow twice)
+              for (unsigned int q = 0; q < p; ++q)
+                {
+                  const auto &other = boundary_conditions.plates[q];
+                  const bool  shared =
+                      other.components[c] &&
+                      !(tied & on_boundary(other.boundary_id, c) & locally_owned_u).is_empty();
+                  if (Utilities::MPI::logical_or(shared, mpi_communicator))
+                    throw InputError(plate.section + ": its boundary shares nodes with " +
+                                     other.section + " in component " + "xyz"[c] +
+                                     " (a node of both, such as a shared corner, cannot follow "
+                                     "two plates); leave that component out of one of them, or "
+                                     "make the two boundaries one plate.");
+                }
             }
         // the candidates: the owned DoFs of the tied components that do not hang
         std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>> candidates;
@@ -589,6 +614,23 @@ namespace StabilizedLagrangian
       point_load_dofs.push_back(vertex_dofs(load.point, load.section));
     for (const auto &bc : boundary_conditions.point_dirichlet)
       point_dirichlet_dofs.push_back(vertex_dofs(bc.point, bc.section));
+    // a node held by a point condition and tied to a plate would hold the
+    // plate by that node alone: the plate's load would go partly into the
+    // point's reaction
+    for (unsigned int p = 0; p < boundary_conditions.point_dirichlet.size(); ++p)
+      for (const auto &plate : boundary_conditions.plates)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (boundary_conditions.point_dirichlet[p].components[c] && plate.components[c])
+            {
+              const bool shared = boundary_component_dofs(dof_handler_u, plate.boundary_id, c)
+                                      .is_element(point_dirichlet_dofs[p][c]);
+              if (Utilities::MPI::logical_or(shared, mpi_communicator))
+                throw InputError(boundary_conditions.point_dirichlet[p].section +
+                                 ": its point is a node of " + plate.section + " in component " +
+                                 "xyz"[c] +
+                                 ", which would hold the plate by that node and take part of "
+                                 "its load; leave that component out of one of them.");
+            }
   }
 
   template <int dim>

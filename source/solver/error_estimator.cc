@@ -518,7 +518,7 @@ namespace StabilizedLagrangian
     FaceEvaluator     edge_evaluator(*this, edge_rule, false);
     FEFaceValues<dim> edge_values(*fe_u, edge_rule, update_quadrature_points);
     const double      master_compliance = deformable_master_compliance();
-    double            mismatch = 0., norm = 0.;
+    double            mismatch = 0., norm = 0., area = 0.;
     // the mismatch at the points of a face evaluator against a pressure
     const auto add_mismatch = [&](const FaceEvaluator &at, const auto &pressure) {
       for (unsigned int q = 0; q < at.n_points(); ++q)
@@ -526,6 +526,7 @@ namespace StabilizedLagrangian
           const ContactKinematics<dim> k = at.kinematics(q);
           mismatch += std::pow(pressure(q) - k.contact_pressure, 2) * k.JxW;
           norm += k.contact_pressure * k.contact_pressure * k.JxW;
+          area += k.JxW;
         }
     };
     for (const auto &face : contact_faces)
@@ -558,7 +559,12 @@ namespace StabilizedLagrangian
       }
     mismatch = Utilities::MPI::sum(mismatch, mpi_communicator);
     norm     = Utilities::MPI::sum(norm, mpi_communicator);
-    return norm > 0. ? std::sqrt(mismatch / norm) : 0.;
+    area     = Utilities::MPI::sum(area, mpi_communicator);
+    // Without contact λ_n is round-off (a pressure below negligible_pressure
+    // everywhere), and a ratio of round-offs is no error estimate: it read
+    // 5e145 on a scene that never touched. Nothing is estimated then (0).
+    return norm > negligible_pressure * negligible_pressure * area ? std::sqrt(mismatch / norm)
+                                                                   : 0.;
   }
 
   template <int dim>

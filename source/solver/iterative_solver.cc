@@ -454,7 +454,19 @@ namespace StabilizedLagrangian
       error.clear();
       iterations = 0;
       times      = PhaseTimes();
-      set_up(matrix);
+      // a Trilinos error in the set-up (ML's aggregation, the Schur
+      // complement's factorisation) fails this solve, which the direct solver
+      // then takes over, instead of ending the run
+      try
+        {
+          set_up(matrix);
+        }
+      catch (const std::exception &failure)
+        {
+          blocks_ready = false;
+          error        = std::string("the preconditioner's set-up failed: ") + failure.what();
+          return false;
+        }
       const auto start = std::chrono::steady_clock::now();
       // (on every exit)
       const auto account = [&]() { times.krylov = seconds_since(start); };
@@ -484,6 +496,12 @@ namespace StabilizedLagrangian
                   std::to_string(relative_tolerance) + " in " + std::to_string(max_iterations) +
                   " iterations (last " +
                   std::to_string(failure.last_residual / weighted_b.l2_norm()) + ")";
+          return false;
+        }
+      catch (const std::exception &failure)
+        {
+          account();
+          error = std::string("GMRES failed: ") + failure.what();
           return false;
         }
       account();

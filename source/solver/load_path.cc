@@ -164,6 +164,10 @@ namespace StabilizedLagrangian
            << std::setprecision(1) << totals.wall_time << " s and " << totals.newton_iterations
            << " Newton iterations in all\n";
     pcout << (met ? "" : "WARNING: ") << report.str();
+    if (adaptive_refinement.target_pressure_error > 0. && last_step.points_in_contact == 0)
+      pcout << "WARNING: no contact point is in contact at the end of the load path: there is "
+               "no contact pressure, so `Target pressure error` was met vacuously (the estimated "
+               "pressure error is reported as 0).\n";
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::ostringstream file;
@@ -212,14 +216,16 @@ namespace StabilizedLagrangian
         partner->set_time(saved.time, time);
         extrapolate_last_step(step_size);
         apply_dirichlet_values(time);
-        if (!solve_load_step(stats))
+        if (!solve_load_step(stats) || !plausible_converged_state())
           {
             saved.restore(*this);
+            contact_start = ContactStart();
             if (!cut_load_step(steps))
               return false;
             continue;
           }
         steps.accept();
+        contact_start = ContactStart();
         record_load_step(stats, path, step_clock);
         const bool checkpointed = output_parameters.checkpoint_interval > 0 &&
                                   steps.step() % output_parameters.checkpoint_interval == 0;
@@ -636,6 +642,10 @@ namespace StabilizedLagrangian
             values[point_dirichlet_dofs[p][c]] = at_point(c);
         bc.displacement->check_finite(mpi_communicator);
       }
+    double largest_prescribed = 0.;
+    for (const auto &entry : values)
+      largest_prescribed = std::max(largest_prescribed, std::abs(entry.second));
+    bounds.add_prescribed_displacement(Utilities::MPI::max(largest_prescribed, mpi_communicator));
     // The increment is not added to the iterate here: the step's first Newton
     // iteration, the tangent predictor (predictor_step()), applies it.
     TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);

@@ -31,7 +31,8 @@ namespace StabilizedLagrangian
         size   = std::max(size, std::abs(solution(index)));
       }
     change = Utilities::MPI::max(change, mpi_communicator);
-    size   = Utilities::MPI::max(size, mpi_communicator);
+    // a diverged iterate may not enlarge its own yardstick (SceneBounds)
+    size = bounds.displacement_scale(Utilities::MPI::max(size, mpi_communicator));
     return size > 0. ? change / size : change;
   }
 

@@ -269,20 +269,130 @@ namespace StabilizedLagrangian
         if (error.find("memory") != std::string::npos ||
             error.find("work space") != std::string::npos)
           unrecoverable_failure = "the linear solver failed: " + error;
-        if (error.find("singular") != std::string::npos)
-          pcout << "  The Newton system is singular. Usual "
-                   "causes: a rigid-body motion the boundary conditions leave free; a sticking "
-                   "contact point whose tangential displacement is prescribed (a Dirichlet "
-                   "condition on a node of the contact boundary, with friction: its friction "
-                   "multiplier is then undetermined, and `Linear solver/Null pivot detection "
-                   "= true` picks one of the equivalent values); a pair that violates the "
-                   "inf-sup condition (Q1/P2).\n";
+        if (error.find("singular") == std::string::npos)
+          return false;
+      }
+    std::string singular = "the linear solver found the matrix singular";
+    if (solved)
+      {
+        newton_constraints.distribute(update);
+        singular =
+            bounds.implausible(update, locally_owned_u, "the Newton update", mpi_communicator);
+      }
+    if (!singular.empty())
+      {
+        if (start_holding_contact())
+          {
+            assemble_newton_system(true);
+            const bool repeated                = solve_for_update(progress, update);
+            contact_start.provisional_pressure = 0.;
+            contact_start.approach_gap         = 0.;
+            return repeated;
+          }
+        report_near_singular(singular);
         return false;
       }
-    newton_constraints.distribute(update);
+    // the body has been lowered by this solve: the gaps are its own now
+    contact_start.approach_gap = 0.;
     if (solver_parameters.adaptive_stopping)
       progress.update_energy = displacement_energy(update);
     return true;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::start_holding_contact()
+  {
+    // nothing touches: the contact starts at the points nearest to the partner
+    if (points_in_contact() == 0)
+      {
+        if (contact_start.approach_used)
+          return false;
+        close_nearest_points();
+        return points_in_contact() > 0;
+      }
+    // Points in contact with a zero threshold s = μ λ_n hold nothing
+    // tangentially (the step's first friction iteration is frictionless): for
+    // one solve they see the mean pressure the loads imply, total applied
+    // force over the area in contact (or 1e-6 E where the loads are
+    // prescribed displacements), so that they stick; the loops then take s
+    // from λ_n. (The weighted conditions keep their nodal thresholds.)
+    if (contact_start.provisional_used || weighted_complementarity() ||
+        !any_pressure_dependent_threshold())
+      return false;
+    double       area = 0.;
+    unsigned int held = 0;
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      if (state.in_contact)
+        {
+          area += k.JxW;
+          held += state.friction_threshold > 0.;
+        }
+    });
+    area = Utilities::MPI::sum(area, mpi_communicator);
+    held = Utilities::MPI::sum(held, mpi_communicator);
+    if (held > 0 || area <= 0.)
+      return false;
+    double load = 0.;
+    for (const auto i : locally_owned_u)
+      load += std::abs(external_force(i));
+    load                               = Utilities::MPI::sum(load, mpi_communicator);
+    contact_start.provisional_used     = true;
+    contact_start.provisional_pressure = std::max(load / area, 1e6 * negligible_pressure);
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &) {
+      if (state.in_contact)
+        state.friction_threshold =
+            friction_law_of(state).threshold(contact_start.provisional_pressure);
+    });
+    pcout << "  the points in contact hold nothing tangentially (their friction threshold mu "
+             "lambda_n is still zero): for one solve they see the pressure "
+          << contact_start.provisional_pressure << " MPa (the loads over the area in contact)\n";
+    return true;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::report_near_singular(const std::string &symptom) const
+  {
+    pcout << "  Newton: " << symptom << ": the Newton system is singular or nearly so.";
+    // points in contact whose friction threshold is still zero hold nothing
+    // tangentially: the first friction iteration of a step is frictionless
+    unsigned int without_threshold = 0;
+    if (any_friction())
+      for (const auto &state : contact_states)
+        without_threshold += state.in_contact && state.friction_threshold <= 0.;
+    without_threshold = Utilities::MPI::sum(without_threshold, mpi_communicator);
+    if (without_threshold > 0)
+      pcout << " " << without_threshold
+            << " contact points in contact have a zero friction threshold (s = mu lambda_n with "
+               "lambda_n not yet known: the step's first friction iteration is frictionless), "
+               "so friction holds nothing tangentially there: a body held sideways only by "
+               "friction needs another support along the contact in its first load step (a "
+               "soft Spring, or a prescribed displacement).";
+    if (!free_rigid_motions.empty())
+      pcout << " The supports leave " << free_rigid_motions
+            << " free, which only the contact can hold; " << points_in_contact()
+            << " contact points are in contact at this iterate (a contact that has not started, "
+               "or that the loads open, holds nothing).";
+    pcout << " Usual causes: a rigid-body motion the boundary conditions leave free (a rigid "
+             "plate or a body held only by a frictionless contact, pushed along the contact); "
+             "a sticking contact point whose tangential displacement is prescribed (a Dirichlet "
+             "condition on a node of the contact boundary, with friction: its friction "
+             "multiplier is then undetermined, and `Linear solver/Null pivot detection = true` "
+             "picks one of the equivalent values); a pair that violates the inf-sup condition "
+             "(Q1/P2).\n";
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::plausible_converged_state() const
+  {
+    const std::string implausible =
+        bounds.implausible(solution, locally_owned_u, "the converged state", mpi_communicator);
+    if (!implausible.empty())
+      pcout << "  " << implausible << ": the loops converged to a state no quasi-static load "
+            << "step reaches, which is not accepted\n";
+    return implausible.empty();
   }
 
   template <int dim>
@@ -458,6 +568,9 @@ namespace StabilizedLagrangian
       NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);             \
   template void ContactProblem<dim>::line_search(                                                 \
       const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);     \
+  template bool ContactProblem<dim>::start_holding_contact();                                     \
+  template void ContactProblem<dim>::report_near_singular(const std::string &) const;             \
+  template bool ContactProblem<dim>::plausible_converged_state() const;                           \
   template void ContactProblem<dim>::log_iterate(unsigned int) const;                             \
   template void ContactProblem<dim>::log_trial(double);
 

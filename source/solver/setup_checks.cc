@@ -189,21 +189,44 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::close_nearest_points()
   {
-    // Nothing touches and the Dirichlet conditions leave a rigid motion free:
-    // the loads alone cannot bring the body onto the obstacle in a
-    // quasi-static step (its system is singular). It is put on the obstacle
-    // by its points nearest to it, as a body lowered until it touches.
+    // Nothing touches and a rigid motion is free (the Dirichlet conditions
+    // leave it, or the Newton system proved singular: a body held by a
+    // force-controlled plate): the loads alone cannot bring the body onto its
+    // partner in a quasi-static step. It is put on the partner by its points
+    // nearest to it, as a body lowered until it touches; those points count
+    // as touching (approach_gap) until the step converges.
     double nearest = std::numeric_limits<double>::max();
     for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       nearest = std::min(nearest, state.pairing.gap(k.position));
     });
-    nearest = Utilities::MPI::min(nearest, mpi_communicator);
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      state.in_contact = state.pairing.gap(k.position) <= nearest + touching_gap;
-    });
-    pcout << "  nothing touches the obstacle and the Dirichlet conditions leave "
-          << free_rigid_motions << " free: the " << points_in_contact()
-          << " contact point(s) nearest to it (gap " << nearest << " mm) start in contact\n";
+    nearest                     = Utilities::MPI::min(nearest, mpi_communicator);
+    contact_start.approach_gap  = std::max(nearest, 0.) + touching_gap;
+    contact_start.approach_used = true;
+    if (weighted_complementarity())
+      {
+        // the nodes' weighted gaps ∫ψ_j g_n / ∫ψ_j: the nearest node closes
+        update_nodal_integrals(false);
+        double nearest_node = std::numeric_limits<double>::max();
+        for (const auto &node : nodal.owned_nodes)
+          if (nodal.weights(node.first) > 0.)
+            nearest_node =
+                std::min(nearest_node, nodal.integrals(node.first) / nodal.weights(node.first));
+        nearest_node = Utilities::MPI::min(nearest_node, mpi_communicator);
+        contact_start.approach_gap =
+            std::max(contact_start.approach_gap, std::max(nearest_node, 0.) + touching_gap);
+        update_nodal_statuses(true);
+        copy_nodal_states_to_points();
+      }
+    else
+      for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+        state.in_contact = state.pairing.gap(k.position) <= nearest + touching_gap;
+      });
+    pcout << "  nothing touches the "
+          << (free_rigid_motions.empty()
+                  ? std::string("partner and the Newton system is singular")
+                  : "obstacle and the Dirichlet conditions leave " + free_rigid_motions + " free")
+          << ": the " << points_in_contact() << " contact point(s) nearest to it (gap " << nearest
+          << " mm) start in contact\n";
   }
 
   template <int dim>

@@ -212,7 +212,7 @@ namespace StabilizedLagrangian
         // a gap within round-off of zero touches (status())
         const double gap        = nodal.integrals(j) / nodal.weights(j);
         const bool   in_contact = Contact::is_in_contact(Contact::augmented_pressure(
-            ghosted_solution(j), std::abs(gap) <= touching_gap ? 0. : gap, contact_parameters.r_n));
+            ghosted_solution(j), status_gap(gap), contact_parameters.r_n));
         changes += in_contact != (nodal.status(j) > 0.5);
         status(j) = in_contact ? 1. : 0.;
       }

@@ -206,6 +206,20 @@ namespace StabilizedLagrangian
       RigidMotion<dim>
       at(const double t) const;
 
+      /**
+       * @brief The rotation centre, as far from the bodies as it may be: the
+       * turned obstacle's points are c + R (x − c), which carry a round-off of
+       * about 1e-16 |x − c|, and that must stay below the contact's touching
+       * tolerance, 1e-12 of the bodies' diameter. A centre farther than
+       * centre_reach diameters from @p body_point (a point of the bodies)
+       * throws an InputError naming `Obstacle/Motion/Rotation centre`.
+       */
+      void
+      check_centre(const Point<dim> &body_point, double body_diameter) const;
+
+      /** How many bodies' diameters the rotation centre may lie from them. */
+      static constexpr double centre_reach = 1e4;
+
       /** @brief True when the obstacle turns (its normals change with time). */
       bool
       rotates() const

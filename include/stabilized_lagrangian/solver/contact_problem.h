@@ -37,6 +37,7 @@
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
+#include <stabilized_lagrangian/solver/scene_bounds.h>
 
 #include <algorithm>
 #include <functional>
@@ -814,6 +815,30 @@ namespace StabilizedLagrangian
     bool
     solve_for_update(NewtonProgress &progress, TrilinosWrappers::MPI::Vector &update);
     /**
+     * After a singular or nearly singular Newton system: start the contact
+     * that would hold the body, if it has not started (close_nearest_points())
+     * or if its points in contact hold nothing tangentially for want of a
+     * friction threshold (a provisional pressure for one solve). True if
+     * something changed and the solve is worth repeating.
+     */
+    bool
+    start_holding_contact();
+    /**
+     * Print why a Newton system is singular or nearly so: @p symptom (what the
+     * solve gave), the rigid motions the supports leave free and the points in
+     * contact that could hold them, and the usual causes.
+     */
+    void
+    report_near_singular(const std::string &symptom) const;
+    /**
+     * Whether the state the loops converged to is one a quasi-static contact
+     * problem can have (SceneBounds::implausible()): finite, no node moved
+     * far beyond the scene's extent. If not, the reason is printed and the
+     * step is failed.
+     */
+    bool
+    plausible_converged_state() const;
+    /**
      * Move the iterate along @p update (line search with at most
      * @p max_halvings) and count the iteration.
      */
@@ -1264,7 +1289,16 @@ namespace StabilizedLagrangian
     evaluate_point_state(ContactPointState<dim> &state,
                          ContactKinematics<dim> &k,
                          const PointRefresh     &what) const;
-    /** The contact status χ of seed eq. (5) at a point, a gap within touching_gap counting as 0. */
+    /**
+     * The gap the status test sees: @p gap, or 0 within touching_gap (or
+     * approach_gap) of zero.
+     */
+    double
+    status_gap(const double gap) const
+    {
+      return std::abs(gap) <= std::max(touching_gap, contact_start.approach_gap) ? 0. : gap;
+    }
+    /** The contact status χ of seed eq. (5) at a point, with status_gap(). */
     bool
     status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
@@ -1833,10 +1867,36 @@ namespace StabilizedLagrangian
      * friction threshold sees zero there (threshold_pressure())
      */
     double negligible_pressure = 0.;
+    /** the bodies' size and the prescribed displacements: what an iterate may not exceed */
+    SceneBounds bounds;
     /** the rigid motions no Dirichlet condition holds, in words; empty if none */
     std::string free_rigid_motions;
     /** |g_n| at most this counts as touching in the status test (round-off of the coordinates) */
     double touching_gap = 0.;
+    /**
+     * How a step starts a contact that would hold a body and has not started
+     * yet (the Newton system singular without it; doc/formulation.md, "What a
+     * converged state must satisfy"); cleared when a step converges or is cut.
+     */
+    struct ContactStart
+    {
+      /**
+       * |g_n| at most this also counts as touching, for one Newton solve: set
+       * by close_nearest_points() when nothing touches (a body lowered until
+       * it touches)
+       */
+      double approach_gap = 0.;
+      /** whether this step has lowered the body onto its partner */
+      bool approach_used = false;
+      /**
+       * the pressure the friction threshold sees where λ_n is still zero, for
+       * one Newton solve: set when points in contact hold nothing
+       * tangentially because their threshold μ λ_n is zero
+       */
+      double provisional_pressure = 0.;
+      /** whether this step has used provisional_pressure */
+      bool provisional_used = false;
+    } contact_start;
     /** relevant: the Dirichlet increment Δū of the load step (apply_dirichlet_values()) */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
     /** whether Δū is non-zero: the step's first Newton iteration is then predictor_step() */
