@@ -39,8 +39,8 @@ namespace StabilizedLagrangian
         {
           std::ostringstream message;
           message << "Obstacle/Motion/Rotation centre = " << centre << " lies " << distance
-                  << " mm from the bodies, more than " << centre_reach
-                  << " times their diameter (" << body_diameter
+                  << " mm from the bodies, more than " << centre_reach << " times their diameter ("
+                  << body_diameter
                   << " mm): the obstacle's turned points would carry round-off larger than "
                      "the contact's touching tolerance (1e-12 of the diameter). Give a centre "
                      "within "
