@@ -34,9 +34,7 @@ import sltest
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-SEED = int(os.environ.get("SL_RESTART_SEED", time.time_ns() % 1000003))
-print(f"kill moments drawn with SL_RESTART_SEED={SEED}")
-random.seed(SEED)
+sltest.seed_random("SL_RESTART_SEED", "kill moments")
 
 
 def scene_text(name, refinements, extra=""):

@@ -2,9 +2,11 @@
 import csv
 import math
 import os
+import random
 import re
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "contrib"))
 import run_output  # noqa: E402
@@ -33,6 +35,15 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=120
         print(output)
         raise SystemExit(f"FAIL: the program exited with {result.returncode} in {workdir}")
     return result.returncode, output
+
+
+def seed_random(variable, what):
+    """Seed `random` from the environment variable `variable`, or from the clock, and print the
+    seed, so that a failing draw can be made again; `what` says what is drawn."""
+    seed = int(os.environ.get(variable, time.time_ns() % 1000003))
+    print(f"{what} drawn with {variable}={seed}")
+    random.seed(seed)
+    return seed
 
 
 def cpu_flags():

@@ -86,6 +86,19 @@ namespace StabilizedLagrangian
       if (std::filesystem::file_size(path) < size)
         throw std::runtime_error(path + " is shorter than the checkpoint says (" +
                                  std::to_string(size) + " bytes): not the file of this run");
+      // the rows a checkpoint knows of end with a newline: a cut inside a row
+      // would leave half of one
+      char last = '\n';
+      if (size > 0)
+        {
+          std::ifstream file(path, std::ios::binary);
+          file.seekg(static_cast<std::streamoff>(size - 1));
+          file.get(last);
+        }
+      if (last != '\n')
+        throw std::runtime_error(path + " has no row ending at byte " + std::to_string(size) +
+                                 ", where the checkpoint says its rows end: not the file of "
+                                 "this run, or a damaged checkpoint");
       std::filesystem::resize_file(path, size);
     }
   } // namespace SafeFiles

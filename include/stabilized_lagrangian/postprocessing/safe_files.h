@@ -27,7 +27,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief Cut @p path to its first @p size bytes (the rows a checkpoint
-     * knows of); a file shorter than that is an error (it was not the run's).
+     * knows of); a file shorter than that, or whose byte @p size − 1 is not
+     * the newline that ends a row, is an error (it was not the run's).
      */
     void
     truncate(const std::string &path, const unsigned long size);
