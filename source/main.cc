@@ -1,13 +1,20 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
 
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <default_scene.h>
 
+#include <sched.h>
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <new>
+#include <thread>
 
 namespace
 {
@@ -28,7 +35,9 @@ the elastic patin of the seed paper (prm/patin_elastic.prm).
   --resume             continue from the last checkpoint in the output directory
                        (Output/Checkpoint interval), on the same number of ranks
   --threads N          BLAS/OpenMP threads per MPI rank (default: the entry
-                       Linear solver/Threads per rank, 1); the environment's
+                       Linear solver/Threads per rank, 1), at most the
+                       processors a rank has and what the address-space limit
+                       (ulimit -v) leaves room for; the environment's
                        OPENBLAS_NUM_THREADS and OMP_NUM_THREADS are ignored
   --inf-sup [N]        numerical inf-sup test of the scene's FE pair on its mesh
                        and N - 1 global refinements (default N = 4): beta_h per
@@ -39,6 +48,64 @@ the elastic patin of the seed paper (prm/patin_elastic.prm).
 
 Output goes to the directory of the entry Output/Output directory.
 )";
+
+  /**
+   * @brief The BLAS/OpenMP threads each rank runs for @p requested: at most the
+   * processors a rank has (those it may run on, and the node's shared among its
+   * ranks), and at most as many as the address space left under its limit
+   * (ulimit -v) holds OpenBLAS's per-thread buffers for, since OpenBLAS
+   * retries a buffer allocation that fails for ever (`--threads 256` under
+   * `ulimit -v 8000000` never ended). The same on every rank; @p note says why
+   * when it is fewer. Throws InputError when not even one buffer fits.
+   */
+  unsigned int
+  usable_threads(const unsigned int requested, std::string &note)
+  {
+    cpu_set_t          allowed;
+    const unsigned int hardware = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned int affinity =
+        sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : hardware;
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    const unsigned int ranks_on_node = Utilities::MPI::n_mpi_processes(node);
+    MPI_Comm_free(&node);
+    const unsigned int processors = Utilities::MPI::min(
+        std::max(1u, std::min(affinity, hardware / ranks_on_node)), MPI_COMM_WORLD);
+
+    // OpenBLAS's buffer per thread (BUFFER_SIZE of Debian's build: 128 MiB) in
+    // at most three quarters of the address space left: the rest is the problem's
+    constexpr double mib = 1024. * 1024., blas_buffer = 128. * mib;
+    struct rlimit    limit;
+    double           threads_fit = 256.;
+    double           left        = 0.;
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      {
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        left        = static_cast<double>(limit.rlim_cur) - 1024. * memory.VmSize;
+        threads_fit = std::floor(0.75 * left / blas_buffer);
+      }
+    const unsigned int by_memory = Utilities::MPI::min(
+        static_cast<unsigned int>(std::clamp(threads_fit, 0., 256.)), MPI_COMM_WORLD);
+    if (by_memory == 0)
+      throw InputError("the address-space limit (ulimit -v) leaves " +
+                       std::to_string(static_cast<long>(left / mib)) +
+                       " MiB to a rank beyond its libraries, too little for the buffer of one "
+                       "BLAS thread (128 MiB) and the problem: raise the limit.");
+    const unsigned int usable = std::min({requested, processors, by_memory});
+    if (usable < requested)
+      note = "Linear solver/Threads per rank = " + std::to_string(requested) + ": " +
+             std::to_string(usable) + " BLAS/OpenMP thread(s) per rank are used, " +
+             (usable == processors
+                  ? "the processors a rank has (" + std::to_string(affinity) + " it may run on, " +
+                        std::to_string(hardware) + " on the node for " +
+                        std::to_string(ranks_on_node) + " rank(s))"
+                  : "as many as the address space left under its limit (ulimit -v), " +
+                        std::to_string(static_cast<long>(left / mib)) +
+                        " MiB, holds 128 MiB BLAS buffers for with room for the problem") +
+             ".\n";
+    return usable;
+  }
 
   template <int dim>
   int
@@ -51,12 +118,16 @@ Output goes to the directory of the entry Output/Output directory.
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
     Parameters::parse<dim>(prm, text, is_file);
+    prm.enter_subsection("Linear solver");
     if (!threads.empty())
-      {
-        prm.enter_subsection("Linear solver");
-        prm.set("Threads per rank", threads);
-        prm.leave_subsection();
-      }
+      prm.set("Threads per rank", threads);
+    std::string        note;
+    const unsigned int requested = prm.get_integer("Threads per rank");
+    const unsigned int usable    = usable_threads(requested, note);
+    prm.set("Threads per rank", std::to_string(usable));
+    prm.leave_subsection();
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::cout << note;
     ContactProblem<dim> problem(prm);
     if (inf_sup_meshes > 0)
       {
@@ -184,6 +255,23 @@ main(int argc, char *argv[])
     {
       if (root)
         std::cerr << "Input error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const std::bad_alloc &)
+    {
+      // (on the rank that ran out, which need not be the first)
+      struct rlimit limit;
+      std::cerr << "Error: out of memory"
+                << (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1
+                        ? " on rank " +
+                              std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
+                        : std::string())
+                << ": an allocation failed"
+                << (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY
+                        ? " within the address-space limit of " +
+                              std::to_string(limit.rlim_cur >> 20) + " MiB (ulimit -v)"
+                        : std::string())
+                << ". Use a coarser mesh, fewer ranks per node or fewer threads." << std::endl;
       return 1;
     }
   catch (const ExceptionBase &e)

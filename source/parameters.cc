@@ -977,7 +977,10 @@ namespace StabilizedLagrangian
                         "BLAS and OpenMP threads of each MPI rank (the direct solver's dense "
                         "kernels). The program sets them itself, whatever OPENBLAS_NUM_THREADS "
                         "or OMP_NUM_THREADS say, so a run does not depend on the environment; "
-                        "the command-line option --threads N overrides this entry. Different "
+                        "the command-line option --threads N overrides this entry. At most the "
+                        "processors each rank has and as many as the address space left under "
+                        "its limit (ulimit -v) holds OpenBLAS's 128 MiB thread buffers for are "
+                        "used, with a note when fewer. Different "
                         "thread counts round differently: loop counts stay the same with the "
                         "scaled Newton criterion, values agree to round-off.");
       prm.leave_subsection();

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Bad input: each case exits non-zero with one clear message naming the entry
-and what is allowed, and writes no NaN into any output file."""
+and what is allowed, and writes no NaN into any output file; more BLAS threads
+than the machine or the address-space limit holds are capped with a note."""
 import os
 import shutil
 import subprocess
@@ -126,6 +127,24 @@ for arguments, expected in ((["--print-parameters", "7"], "2 or 3"),
     check(result.returncode == 1 and expected in result.stderr,
           f"command line {' '.join(arguments)}: exit code {result.returncode}, "
           f"message names '{expected}'")
+
+# --threads 256 under an address-space limit of 8 GB: the buffers OpenBLAS gives each thread did
+# not fit and its allocator retried them for ever; the threads are capped to the processors a
+# rank has and to the address space left, with a note (a limit too tight for one buffer is
+# refused with a message)
+out = f"{workdir}/threads_256"
+os.makedirs(out, exist_ok=True)
+with open(f"{out}/input.prm", "w") as f:
+    f.write(short)
+try:
+    result = subprocess.run(["bash", "-c", f"ulimit -v 8000000; exec {executable} --threads 256 input.prm"],
+                            cwd=out, capture_output=True, text=True, timeout=120)
+    code, log = result.returncode, result.stdout + result.stderr
+except subprocess.TimeoutExpired:
+    code, log = None, ""
+check(code == 0 and "BLAS/OpenMP thread(s) per rank are used" in log,
+      f"--threads 256 under ulimit -v 8000000: exit code {code} (None: still running after 120 s), "
+      f"the threads capped with a note: {log.strip().splitlines()[0][:150] if log.strip() else ''}")
 
 # no NaN in any CSV written (the .vtu files are compressed; the ParaView test
 # reads them and checks their arrays for NaN)
