@@ -456,7 +456,12 @@ namespace StabilizedLagrangian
                 dissipation += (threshold * slip.norm() + tangential * slip) * k.JxW;
               }
           }
-        contact[face.cell->active_cell_index()] += h / E * residual + gap_terms + dissipation;
+        // ∫(s|Δs| + t_t·Δs) ≥ 0 where the traction obeys the law point by point;
+        // with the weighted conditions the law holds per node, and between
+        // the nodes a traction beyond s makes it negative (its square root
+        // was NaN): its magnitude is the defect
+        contact[face.cell->active_cell_index()] +=
+            h / E * residual + gap_terms + std::abs(dissipation);
         face_complementarity.emplace_back(face.cell->active_cell_index(), complementarity);
       }
     // The complementarity enters as the global |∫_Γc λ_n g_n| (Hild and
