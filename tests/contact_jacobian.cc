@@ -169,15 +169,18 @@ end
    */
   template <int dim>
   std::string
-  two_bodies(const bool overhang = false)
+  two_bodies(const bool overhang = false, const std::string &mesh = "")
   {
     return std::string(R"(
 subsection Geometry
   set Model = gmsh
   subsection gmsh
     set Mesh file = )") +
-           SL_TEST_SCENES + (overhang ? "/two_blocks_overhang" : "/two_blocks") +
-           (dim == 2 ? ".geo" : "_3d.geo") + R"(
+           SL_TEST_SCENES +
+           (mesh.empty() ? std::string(overhang ? "/two_blocks_overhang" : "/two_blocks") +
+                               (dim == 2 ? ".geo" : "_3d.geo")
+                         : "/" + mesh) +
+           R"(
     set Global refinements = 0
   end
 end
@@ -460,6 +463,20 @@ main(int argc, char *argv[])
                 label + "overhanging ",
                 false);
       }
+  // a curved deformable master (tests/scenes/block_on_cylinder_3d.geo: the
+  // faces of a cylinder's top, their normals 0.11 rad apart), sticking and
+  // slipping, the pairing frozen and linearised; displacements of 2e-2 mm
+  // bring the points near the crest into contact (the faceted crest lies
+  // 0.046 mm below the block)
+  for (const bool generalized : {true, false})
+    for (const State state : {State::stick, State::slip})
+      test<3>(state,
+              "Gauss",
+              0.3,
+              generalized,
+              two_bodies<3>(false, "block_on_cylinder_3d.geo"),
+              2e-2,
+              "curved master ");
   // the axisymmetric model (2D): the hoop rows and columns of the tangent,
   // with displacements of 2.5 % of the cell size so that the finite-strain
   // terms count
