@@ -302,10 +302,8 @@ namespace StabilizedLagrangian
                        "distributed triangulation (deal.II 9.4's fully distributed one; p4est "
                        "holds only hypercubes) cannot be refined in place. Refine the mesh "
                        "uniformly with Geometry/.../Global refinements.");
-    if (dim == 3 && !contact_parameters.master_ids.empty())
-      throw InputError("Contact/Master boundary ids: contact between two deformable bodies "
-                       "meshed with tetrahedra needs a master surface of triangle faces, which "
-                       "is not built yet; in 3D mesh the bodies with hexahedra.");
+    // (two bodies of tetrahedra: Contact::MasterSurface refuses its triangle
+    // faces, once the master boundary's names are resolved)
   }
 
   template <int dim>
