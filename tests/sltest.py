@@ -37,6 +37,17 @@ def run(executable, prm_text, workdir, ranks=1, expect_success=True, timeout=120
     return result.returncode, output
 
 
+def address_sanitized(executable):
+    """Whether the executable is built with AddressSanitizer (contrib/sanitize.sh links libasan
+    into it). ASan reserves terabytes of address space at start-up, so a run under an
+    address-space limit set before it starts (ulimit -v) cannot start."""
+    try:
+        with open(executable, "rb") as f:
+            return b"libasan.so" in f.read()
+    except OSError:
+        return False
+
+
 def seed_random(variable, what):
     """Seed `random` from the environment variable `variable`, or from the clock, and print the
     seed, so that a failing draw can be made again; `what` says what is drawn."""
