@@ -46,7 +46,14 @@ accepted. Tiny meshes: the whole test takes seconds.
    Newton. The block sticks, so a solution exists and only it passes: F_n = 1000 t,
    F_t = 100 t to 1e-6. (Both used to exit 0 with F_n = 273 N/mm at t = 1, F_t = 136 then
    0, Newton 1 then 0 iterations: the step's first friction iteration, with the threshold
-   mu lambda_n still zero, is frictionless and its system singular.)"""
+   mu lambda_n still zero, is frictionless and its system singular.)
+9. (the plate of Code_Aster's GRECO benchmark, mu = 1) The block of 8 loaded on its top by a
+   traction of 40 t MPa along the contact and 50 t MPa onto it (F_t / F_n = 0.8 < mu = 1):
+   nested loops and generalized Newton. The block tilts, lifts off on one side, and most of
+   the points in contact slip; a solution exists, so only it passes: F_n = 1000 t, F_t = 800 t
+   to 1e-6. (It used to exit 0 with a residual of 488 N/mm and F_n = 0, "contact 3/16".) The
+   same with 60 t MPa along the contact (F_t > mu F_n): no quasi-static equilibrium exists;
+   a non-zero exit naming the tangential loads that exceed what friction can hold."""
 import math
 import os
 import re
@@ -604,6 +611,34 @@ def case_block_held_by_friction():
                                     f"(largest difference {worst:.3g} N/mm)")
 
 
+def case_greco_plate():
+    print("case 9: a block loaded along the contact by 0.8 and 1.2 times what friction can hold")
+    for shear in (40, 60):
+        conditions = f"""  subsection Neumann top
+    set Boundary id = 3
+    subsection Traction
+      set Function expression = {shear}*t; -50*t
+    end
+  end
+"""
+        for label, extra in (("nested loops", ""), ("generalized Newton", sltest.GENERALIZED_NEWTON)):
+            name = f"case9/{shear}_" + label.replace(" ", "_")
+            code, log, outdir = run(name, block(conditions, 1, extra=extra))
+            steps = observed(f"{shear} MPa, {label}", code, log, outdir, FORCE_COLUMNS)
+            if shear > 50:
+                refused(f"9, {shear} MPa along > mu x 50 MPa onto the contact, {label}", code, log,
+                        outdir, ["tangential loads exceed what friction can hold"])
+                continue
+            check(code == 0, f"9, {shear} MPa, {label}: exit code {code}")
+            worst = max([max(abs(r["normal_force_N"] - 1000 * r["time"]),
+                             abs(r["tangential_force_N"] - 20 * shear * r["time"]),
+                             abs(r["contact_force_x_N"] + 20 * shear * r["time"])) for r in steps]
+                        or [math.inf])
+            check(len(steps) == 2 and worst <= 1e-6 * 1000,
+                  f"9, {shear} MPa, {label}: F_n = 1000 t, F_t = {20 * shear} t N/mm at both steps "
+                  f"(largest difference {worst:.3g} N/mm)")
+
+
 case_two_body_plate_gauss()
 case_sideways_plate_frictionless()
 case_plates_sharing_corner()
@@ -612,4 +647,5 @@ case_huge_modulus()
 case_far_rotation_centre()
 case_target_pressure_error_without_contact()
 case_block_held_by_friction()
+case_greco_plate()
 check.finish()

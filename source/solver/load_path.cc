@@ -219,7 +219,12 @@ namespace StabilizedLagrangian
         if (!solve_load_step(stats) || !plausible_converged_state())
           {
             saved.restore(*this);
-            contact_start = ContactStart();
+            // the same step again, with the friction threshold folded
+            const bool fold = contact_start.fold_friction && !contact_start.friction_folded;
+            contact_start   = ContactStart();
+            contact_start.friction_folded = fold;
+            if (fold)
+              continue;
             if (!cut_load_step(steps))
               return false;
             continue;
@@ -595,7 +600,7 @@ namespace StabilizedLagrangian
          << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
          << std::setw(3) << s.newton_iterations
          << (s.failed_newton_iterations > 0
-                 ? " (+" + std::to_string(s.failed_newton_iterations) + " in cut attempts)"
+                 ? " (+" + std::to_string(s.failed_newton_iterations) + " in failed attempts)"
                  : std::string())
          << (s.adaptive_stops > 0
                  ? " (" + std::to_string(s.adaptive_stops) + " loop(s) stopped adaptively)"

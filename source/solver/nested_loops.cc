@@ -16,6 +16,14 @@ namespace StabilizedLagrangian
   bool
   ContactProblem<dim>::solve_load_step(StepStatistics &stats)
   {
+    // an attempt whose fixed friction thresholds could not hold the loads
+    // (fold_friction_for_slipping_contact()) is repeated with s = μ λ_n
+    // linearised (seed §2.3)
+    if (contact_start.friction_folded)
+      {
+        ++stats.folded_loops;
+        return fold_for_this_step(Loop::friction, [&]() { return geometry_loop(stats); });
+      }
     return geometry_loop(stats);
   }
 

@@ -289,7 +289,8 @@ namespace StabilizedLagrangian
             contact_start.approach_gap         = 0.;
             return repeated;
           }
-        report_near_singular(singular);
+        if (!fold_friction_for_slipping_contact())
+          report_near_singular(singular);
         return false;
       }
     // the body has been lowered by this solve: the gaps are its own now
@@ -320,20 +321,11 @@ namespace StabilizedLagrangian
     if (contact_start.provisional_used || weighted_complementarity() ||
         !any_pressure_dependent_threshold())
       return false;
-    double       area = 0.;
-    unsigned int held = 0;
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      if (state.in_contact)
-        {
-          area += k.JxW;
-          held += state.friction_threshold > 0.;
-        }
-    });
-    area = Utilities::MPI::sum(area, mpi_communicator);
-    held = Utilities::MPI::sum(held, mpi_communicator);
-    if (held > 0 || area <= 0.)
+    const ContactCensus census = contact_census();
+    if (census.without_threshold < census.in_contact || census.area <= 0.)
       return false;
-    double load = 0.;
+    const double area = census.area;
+    double       load = 0.;
     for (const auto i : locally_owned_u)
       load += std::abs(external_force(i));
     load                               = Utilities::MPI::sum(load, mpi_communicator);
@@ -352,18 +344,14 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::report_near_singular(const std::string &symptom) const
+  ContactProblem<dim>::report_near_singular(const std::string &symptom)
   {
     pcout << "  Newton: " << symptom << ": the Newton system is singular or nearly so.";
     // points in contact whose friction threshold is still zero hold nothing
     // tangentially: the first friction iteration of a step is frictionless
-    unsigned int without_threshold = 0;
-    if (any_friction())
-      for (const auto &state : contact_states)
-        without_threshold += state.in_contact && state.friction_threshold <= 0.;
-    without_threshold = Utilities::MPI::sum(without_threshold, mpi_communicator);
-    if (without_threshold > 0)
-      pcout << " " << without_threshold
+    const ContactCensus census = contact_census();
+    if (census.without_threshold > 0)
+      pcout << " " << census.without_threshold
             << " contact points in contact have a zero friction threshold (s = mu lambda_n with "
                "lambda_n not yet known: the step's first friction iteration is frictionless), "
                "so friction holds nothing tangentially there: a body held sideways only by "
@@ -371,9 +359,18 @@ namespace StabilizedLagrangian
                "soft Spring, or a prescribed displacement).";
     if (!free_rigid_motions.empty())
       pcout << " The supports leave " << free_rigid_motions
-            << " free, which only the contact can hold; " << points_in_contact()
+            << " free, which only the contact can hold; " << census.in_contact
             << " contact points are in contact at this iterate (a contact that has not started, "
                "or that the loads open, holds nothing).";
+    // a slipping point's traction is μ λ_n along the slip, whatever the
+    // motion along the contact: if all slip, nothing holds that motion
+    if (census.in_contact > 0 && census.slipping == census.in_contact &&
+        census.without_threshold < census.in_contact)
+      pcout << " Every point in contact slips, so friction holds no motion along the contact: "
+               "where the supports leave such a motion free, the tangential loads exceed what "
+               "friction can hold (the friction coefficient times the normal force) and no "
+               "quasi-static equilibrium exists; lower the tangential load or hold the body "
+               "along the contact.";
     pcout << " Usual causes: a rigid-body motion the boundary conditions leave free (a rigid "
              "plate or a body held only by a frictionless contact, pushed along the contact); "
              "a sticking contact point whose tangential displacement is prescribed (a Dirichlet "
@@ -381,6 +378,53 @@ namespace StabilizedLagrangian
              "multiplier is then undetermined, and `Linear solver/Null pivot detection = true` "
              "picks one of the equivalent values); a pair that violates the inf-sup condition "
              "(Q1/P2).\n";
+  }
+
+  template <int dim>
+  typename ContactProblem<dim>::ContactCensus
+  ContactProblem<dim>::contact_census()
+  {
+    ContactCensus census;
+    const bool    friction = any_friction();
+    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+      if (!state.in_contact)
+        return;
+      ++census.in_contact;
+      census.area += k.JxW;
+      census.without_threshold += friction && state.friction_threshold <= 0.;
+      census.slipping += point_response(state, k).status() == Contact::Status::slip;
+    });
+    census.in_contact        = Utilities::MPI::sum(census.in_contact, mpi_communicator);
+    census.slipping          = Utilities::MPI::sum(census.slipping, mpi_communicator);
+    census.without_threshold = Utilities::MPI::sum(census.without_threshold, mpi_communicator);
+    census.area              = Utilities::MPI::sum(census.area, mpi_communicator);
+    return census;
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::fold_friction_for_slipping_contact()
+  {
+    // Seed §2.2's friction loop solves a Tresca problem per iteration: with
+    // thresholds s too small for the tangential loads (s = μ λ_n of an
+    // earlier iterate, or the provisional pressure over an area the loads
+    // since reduced) every point slips and, in 2D or under a slip direction
+    // shared by all points, nothing resists the motion along the contact.
+    // Coulomb's s = μ λ_n grows with the pressure that the same loads
+    // produce: the generalized Newton, which linearises it (seed §2.3), finds
+    // the stick zone the fixed s cannot.
+    if (contact_start.friction_folded || loops.linearised(Loop::friction) ||
+        !any_pressure_dependent_threshold())
+      return false;
+    const ContactCensus census = contact_census();
+    if (census.in_contact == 0 || census.slipping < census.in_contact)
+      return false;
+    contact_start.fold_friction = true;
+    pcout << "  friction loop: every one of the " << census.in_contact
+          << " points in contact slips under this iteration's fixed friction thresholds and the "
+             "Newton system is singular (nothing holds the motion along the contact); the "
+             "step is repeated with the friction threshold folded into the generalized Newton\n";
+    return true;
   }
 
   template <int dim>
@@ -546,32 +590,34 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                       \
-  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                      \
-  template bool                       ContactProblem<dim>::newton_loop(                           \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);          \
-  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);        \
-  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);        \
-  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                   \
-  template bool   ContactProblem<dim>::below_discretisation_error(double, double);                \
-  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &) \
-      const;                                                                                      \
-  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                     \
-                                                      NewtonProgress &,                           \
-                                                      const NewtonMeasure &,                      \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template bool ContactProblem<dim>::may_iterate(                                                 \
-      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                     \
-  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                           \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template void ContactProblem<dim>::advance(                                                     \
-      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);             \
-  template void ContactProblem<dim>::line_search(                                                 \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);     \
-  template bool ContactProblem<dim>::start_holding_contact();                                     \
-  template void ContactProblem<dim>::report_near_singular(const std::string &) const;             \
-  template bool ContactProblem<dim>::plausible_converged_state() const;                           \
-  template void ContactProblem<dim>::log_iterate(unsigned int) const;                             \
+#define SL_INSTANTIATE(dim)                                                                          \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                         \
+  template bool                       ContactProblem<dim>::newton_loop(                              \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);             \
+  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);           \
+  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);           \
+  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                      \
+  template bool   ContactProblem<dim>::below_discretisation_error(double, double);                   \
+  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &)    \
+      const;                                                                                         \
+  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                        \
+                                                      NewtonProgress &,                              \
+                                                      const NewtonMeasure &,                         \
+                                                      TrilinosWrappers::MPI::Vector &);              \
+  template bool ContactProblem<dim>::may_iterate(                                                    \
+      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                        \
+  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                              \
+                                                      TrilinosWrappers::MPI::Vector &);              \
+  template void ContactProblem<dim>::advance(                                                        \
+      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);                \
+  template void ContactProblem<dim>::line_search(                                                    \
+      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);        \
+  template bool                                        ContactProblem<dim>::start_holding_contact(); \
+  template typename ContactProblem<dim>::ContactCensus ContactProblem<dim>::contact_census();        \
+  template bool ContactProblem<dim>::fold_friction_for_slipping_contact();                           \
+  template void ContactProblem<dim>::report_near_singular(const std::string &);                      \
+  template bool ContactProblem<dim>::plausible_converged_state() const;                              \
+  template void ContactProblem<dim>::log_iterate(unsigned int) const;                                \
   template void ContactProblem<dim>::log_trial(double);
 
   SL_INSTANTIATE(2)

@@ -829,7 +829,27 @@ namespace StabilizedLagrangian
      * contact that could hold them, and the usual causes.
      */
     void
-    report_near_singular(const std::string &symptom) const;
+    report_near_singular(const std::string &symptom);
+    /** The points in contact of the current iterate, by what they hold tangentially. */
+    struct ContactCensus
+    {
+      unsigned int in_contact        = 0;  ///< points in contact
+      unsigned int slipping          = 0;  ///< of which slip
+      unsigned int without_threshold = 0;  ///< of which have s = 0 (friction laws with friction)
+      double       area              = 0.; ///< the area in contact
+    };
+    /** Count the points of the current iterate (collective). */
+    ContactCensus
+    contact_census();
+    /**
+     * After a singular solve: if the friction loop's fixed thresholds s leave
+     * every point in contact slipping (Tresca thresholds too small for the
+     * tangential loads, so nothing holds the motion along the contact), ask
+     * for the step to be repeated with the threshold folded into the
+     * generalized Newton (contact_start.fold_friction) and return true.
+     */
+    bool
+    fold_friction_for_slipping_contact();
     /**
      * Whether the state the loops converged to is one a quasi-static contact
      * problem can have (SceneBounds::implausible()): finite, no node moved
@@ -1896,6 +1916,14 @@ namespace StabilizedLagrangian
       double provisional_pressure = 0.;
       /** whether this step has used provisional_pressure */
       bool provisional_used = false;
+      /**
+       * the friction loop's fixed thresholds left every point in contact
+       * slipping and the system singular: the attempt is repeated with the
+       * threshold folded into the generalized Newton (solve_load_step())
+       */
+      bool fold_friction = false;
+      /** whether this attempt is that repetition */
+      bool friction_folded = false;
     } contact_start;
     /** relevant: the Dirichlet increment Δū of the load step (apply_dirichlet_values()) */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
