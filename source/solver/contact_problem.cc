@@ -125,6 +125,7 @@ namespace StabilizedLagrangian
     check_body_is_held();
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
+    warn_if_stick_traction_oscillates();
     warn_if_dirichlet_not_ramped();
   }
 

@@ -229,6 +229,19 @@ namespace StabilizedLagrangian
           << " mm) start in contact\n";
   }
 
+  namespace
+  {
+    /**
+     * The Poisson's ratio from which displacements of degree @p degree lock
+     * volumetrically: Q1 from K/G ≈ 50 (ν ≈ 0.49), Q2 much later.
+     */
+    double
+    locking_poissons_ratio(const unsigned int degree)
+    {
+      return degree == 1 ? 0.49 : 0.4999;
+    }
+  } // namespace
+
   template <int dim>
   void
   ContactProblem<dim>::warn_if_pair_locks() const
@@ -237,8 +250,8 @@ namespace StabilizedLagrangian
     // K/G = 2(1 + ν)/(3(1 − 2ν)), low-order displacements cannot deform at
     // constant volume and the body answers far too stiffly (a block of
     // ν = 0.4999 pressed on a plane with Q1/P1: 3.6 times the normal force of
-    // Q2/P2). Q1 locks from K/G ≈ 50 (ν ≈ 0.49), Q2 much later.
-    const double limit = fe_pair->displacement_degree() == 1 ? 0.49 : 0.4999;
+    // Q2/P2).
+    const double limit = locking_poissons_ratio(fe_pair->displacement_degree());
     for (const auto &material : materials)
       {
         const double nu = material.model->poissons_ratio();
@@ -259,6 +272,43 @@ namespace StabilizedLagrangian
               << material.slot
               << "/Volumetric formulation = " << (simplex_mesh() ? "mixed " : "F-bar or mixed ")
               << "(locking-free; doc/formulation.md \"Near incompressibility\").\n";
+      }
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::warn_if_stick_traction_oscillates() const
+  {
+    // F-bar and mixed on Q1 keep one volume change per cell: the Q1/P0 pair of
+    // the mean dilatation, which is not inf-sup stable. Its checkerboard
+    // pressure exerts a tangential force alternating from node to node on the
+    // contact boundary; where stick holds each contact node tangentially (a
+    // multiplier per node), the friction multiplier takes that force up. When
+    // ν → 0.5 the frictional traction of Hertz's contact on a rigid plane
+    // vanishes with Dundurs' β = (1 − 2ν)/(2(1 − ν)), so the alternation is
+    // most of the stick-zone traction (doc/near_incompressibility.md,
+    // "Stick-zone traction").
+    if (!any_friction() || fe_pair->displacement_degree() != 1 || simplex_mesh() ||
+        fe_pair->multiplier_on_coarser_mesh())
+      return;
+    for (const auto &material : materials)
+      {
+        const double nu = material.model->poissons_ratio();
+        if (!material.modified_volume() || nu < locking_poissons_ratio(1))
+          continue;
+        pcout << "WARNING: " << material.slot << ": Poisson's ratio " << nu
+              << " with Volumetric formulation = "
+              << (material.volumetric == Materials::BodyMaterial<dim>::Volumetric::f_bar ? "F-bar"
+                                                                                         : "mixed")
+              << " on Q1 (one volume change per cell, the Q1/P0 pair, not inf-sup stable) and "
+                 "friction multipliers at every contact node (Contact/Finite element pair = "
+              << contact_parameters.fe_pair
+              << "): the stick-zone tangential traction alternates from node to node (the "
+                 "pressure checkerboard mode). Use Contact/Finite element pair = Q1/P1 coarse, or "
+                 "Q2/P1 with "
+              << material.slot
+              << "/Volumetric formulation = mixed (doc/near_incompressibility.md, \"Stick-zone "
+                 "traction\").\n";
       }
   }
 
@@ -407,15 +457,16 @@ namespace StabilizedLagrangian
 
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                        \
-  template std::string  ContactProblem<dim>::rigid_motions_left_free(bool) const;  \
-  template void         ContactProblem<dim>::check_body_is_held() const;           \
-  template unsigned int ContactProblem<dim>::points_in_contact() const;            \
-  template void         ContactProblem<dim>::close_nearest_points();               \
-  template void         ContactProblem<dim>::warn_if_pair_locks() const;           \
-  template void         ContactProblem<dim>::warn_if_body_behind_obstacle() const; \
-  template void         ContactProblem<dim>::choose_augmentation_parameters();     \
-  template double       ContactProblem<dim>::largest_dirichlet_increment();        \
+#define SL_INSTANTIATE(dim)                                                             \
+  template std::string  ContactProblem<dim>::rigid_motions_left_free(bool) const;       \
+  template void         ContactProblem<dim>::check_body_is_held() const;                \
+  template unsigned int ContactProblem<dim>::points_in_contact() const;                 \
+  template void         ContactProblem<dim>::close_nearest_points();                    \
+  template void         ContactProblem<dim>::warn_if_pair_locks() const;                \
+  template void         ContactProblem<dim>::warn_if_stick_traction_oscillates() const; \
+  template void         ContactProblem<dim>::warn_if_body_behind_obstacle() const;      \
+  template void         ContactProblem<dim>::choose_augmentation_parameters();          \
+  template double       ContactProblem<dim>::largest_dirichlet_increment();             \
   template void         ContactProblem<dim>::warn_if_dirichlet_not_ramped() const;
 
   SL_INSTANTIATE(2)

@@ -1089,6 +1089,13 @@ namespace StabilizedLagrangian
     /** Warn when a material is nearly incompressible for the displacement degree (locking). */
     void
     warn_if_pair_locks() const;
+    /**
+     * Warn when F-bar or mixed on Q1 (the Q1/P0 mean dilatation) meets friction
+     * multipliers at every contact node near incompressibility: the stick-zone
+     * traction takes up the pressure checkerboard mode.
+     */
+    void
+    warn_if_stick_traction_oscillates() const;
     /** Warn when most of the body starts behind the rigid obstacle's surface. */
     void
     warn_if_body_behind_obstacle() const;
