@@ -53,7 +53,15 @@ accepted. Tiny meshes: the whole test takes seconds.
    the points in contact slip; a solution exists, so only it passes: F_n = 1000 t, F_t = 800 t
    to 1e-6. (It used to exit 0 with a residual of 488 N/mm and F_n = 0, "contact 3/16".) The
    same with 60 t MPa along the contact (F_t > mu F_n): no quasi-static equilibrium exists;
-   a non-zero exit naming the tangential loads that exceed what friction can hold."""
+   a non-zero exit naming the tangential loads that exceed what friction can hold.
+10. A half cylinder (R = 100 mm, E = 200000 MPa, nu = 0.4999, F-bar, 3 global and 6 local
+   refinements within 12 mm) tied at its top to a `Rigid plate` (x, y) pressed by
+   P = 50000 t N/mm onto a rigid plane, mu = 0.3, automatic r_n, the first two of ten load
+   steps. The plate holds x only through the friction of the contact; no sideways load.
+   Right: F_n = P t to 1e-6, the tangential force below 1e-6 of it, the plate moved less
+   than R / 10. (The issue reported F_n = 22772 N/mm for P t = 10000, F_t = 6832 and the
+   plate 3.79e9 mm sideways on 9648fe4; that binary gave the right answer here, so this case
+   guards the scene without having reproduced the failure.)"""
 import math
 import os
 import re
@@ -639,6 +647,68 @@ def case_greco_plate():
                   f"(largest difference {worst:.3g} N/mm)")
 
 
+def case_fbar_half_cylinder_on_plate():
+    print("case 10: a nearly incompressible half cylinder (F-bar) pressed by a rigid plate")
+    P, R = 50000, 100
+    prm = f"""set Dimension = 2
+subsection Geometry
+  set Model = half ball
+  subsection half ball
+    set Radius                  = {R}
+    set Global refinements      = 3
+    set Local refinements       = 6
+    set Local refinement radius = 12
+    set Contact zone radius     = 10
+  end
+end
+subsection Obstacle
+  set Model = plane
+end
+subsection Material
+  set Model = linear elastic
+  set Volumetric formulation = F-bar
+  subsection linear elastic
+    set Young's modulus = 200000
+    set Poisson's ratio = 0.4999
+  end
+end
+subsection Contact
+  set Contact boundary ids = 2
+  set r_n                  = automatic
+  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = 0.3
+    end
+  end
+end
+subsection Boundary conditions
+  subsection Rigid plate top
+    set Boundary id = 3
+    set Components  = x, y
+    subsection Force
+      set Function expression = 0; -{P}*t
+    end
+  end
+end
+subsection Load stepping
+  set End time             = 0.2
+  set Number of load steps = 2
+end
+"""
+    code, log, outdir = run("case10", prm)
+    steps = observed("F-bar half cylinder", code, log, outdir, FORCE_COLUMNS)
+    check(code == 0 and len(steps) == 2, f"10: exit code {code}, {len(steps)} of 2 steps")
+    worst = max([abs(r["normal_force_N"] - P * r["time"]) for r in steps] or [math.inf])
+    check(worst <= 1e-6 * P, f"10: F_n = {P} t N/mm to 1e-6 (largest difference {worst:.3g} N/mm)")
+    sideways = max([abs(r["tangential_force_N"]) / (P * r["time"]) for r in steps] or [math.inf])
+    check(sideways <= 1e-6, f"10: no sideways force without a sideways load (F_t / F_n at most "
+                            f"{sideways:.3g})")
+    moved = max([abs(r[c]) for r in steps for c in plate_columns(steps, "top")] or [math.inf])
+    check(math.isfinite(moved) and moved <= R / 10,
+          f"10: the plate moves {moved:.3g} mm <= {R / 10} mm")
+
+
 case_two_body_plate_gauss()
 case_sideways_plate_frictionless()
 case_plates_sharing_corner()
@@ -648,4 +718,5 @@ case_far_rotation_centre()
 case_target_pressure_error_without_contact()
 case_block_held_by_friction()
 case_greco_plate()
+case_fbar_half_cylinder_on_plate()
 check.finish()
