@@ -284,7 +284,8 @@ for name, path, value, expect in (
     text_case(name, scene(settings=[(path, value)]), expect)
 # combinations the dual multiplier basis cannot take
 DUAL = ("Contact/Finite element pair", "Q1/P1 dual")
-text_case("dual pair, pointwise conditions", scene(settings=[DUAL]), "Complementarity = weighted")
+text_case("dual pair, pointwise conditions",
+          scene(settings=[DUAL, ("Contact/Complementarity", "pointwise")]), "Complementarity = weighted")
 text_case("dual pair, nodal quadrature",
           scene(settings=[DUAL, ("Contact/Complementarity", "weighted"),
                           ("Contact/Contact quadrature", "Gauss-Lobatto")]), "Contact quadrature = Gauss")

@@ -29,7 +29,12 @@ TOLERANCE = 1e-9
 
 
 def search(mode, distance=None):
-    text = sltest.nested_set("Contact/Master surface search", mode)
+    # The pointwise conditions, with which the bounds were set. With the weighted ones (the
+    # default for two bodies) the generalized Newton diverges on ironing with the die as the
+    # slave at t = 0.22 (doc/two_bodies.md has it too), and on the 3D blocks the two
+    # searches agree to 1e-8 of the tangential traction (Newton's tolerance), not 1e-9.
+    text = sltest.nested_set("Contact/Complementarity", "pointwise")
+    text += sltest.nested_set("Contact/Master surface search", mode)
     if distance is not None:
         text += sltest.nested_set("Contact/Search distance", distance)
     return text

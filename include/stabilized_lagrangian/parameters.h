@@ -72,8 +72,12 @@ namespace StabilizedLagrangian
       double      r_t_factor      = 1.;
       std::string fe_pair;
       bool        check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
-      ContactQuadrature quadrature      = ContactQuadrature::gauss_lobatto;
-      Complementarity   complementarity = Complementarity::pointwise;
+      ContactQuadrature quadrature = ContactQuadrature::gauss_lobatto;
+      /** the conditions used (chosen by the run with `automatic`) */
+      Complementarity complementarity = Complementarity::pointwise;
+      /** `Complementarity = automatic`: weighted for two bodies
+       * (ContactProblem::choose_complementarity) */
+      bool complementarity_automatic = false;
 
       static void
       declare_parameters(ParameterHandler  &prm,

@@ -86,12 +86,13 @@ namespace StabilizedLagrangian
           prm.leave_subsection();
           prm.leave_subsection();
         }
-      if (!contact_zones.empty() && weighted_complementarity())
-        throw InputError("Contact/Zone " + contact_zones[0].name +
-                         ": contact zones with their own friction law are built for the "
-                         "pointwise conditions only; use Contact/Complementarity = pointwise.");
     }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
+    choose_complementarity();
+    if (!contact_zones.empty() && weighted_complementarity())
+      throw InputError("Contact/Zone " + contact_zones[0].name +
+                       ": contact zones with their own friction law are built for the "
+                       "pointwise conditions only; use Contact/Complementarity = pointwise.");
     pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
 
     std::ostringstream used;

@@ -551,7 +551,7 @@ namespace StabilizedLagrangian
            "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
            "assemblies,jacobian_assemblies,estimated_error_sqrtNmm,estimated_contact_error_sqrtNmm,"
            "estimated_relative_error,peak_memory_MiB,wall_time_s,owned_dofs_min,owned_dofs_max,"
-           "ghost_dofs_max";
+           "ghost_dofs_max,weighted_complementarity";
     if (inf_sup_checked())
       file << ",inf_sup_beta";
     // (with `automatic` also on the meshes it left to the direct solver: 0)
@@ -573,7 +573,8 @@ namespace StabilizedLagrangian
          << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
          << path_work.jacobians << ',' << last_step.estimated_error << ','
          << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
-         << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max;
+         << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max << ','
+         << (weighted_complementarity() ? 1 : 0);
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)

@@ -5,6 +5,8 @@
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 // `Contact/Complementarity = weighted` (doc/formulation.md, "Weighted
 // complementarity"): the contact and friction conditions hold once per
@@ -84,19 +86,65 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
+  ContactProblem<dim>::choose_complementarity()
+  {
+    if (!contact_parameters.complementarity_automatic)
+      return;
+    const bool two_bodies =
+        !contact_parameters.master_ids.empty() || !contact_parameters.master_names.empty();
+    // Local refinement of a 3D contact surface puts hanging nodes on it in a
+    // later cycle; the conditions are chosen once for all cycles.
+    const bool local_refinement_3d =
+        dim == 3 && adaptive_refinement.cycles > 0 &&
+        adaptive_refinement.criterion != Parameters::AdaptiveRefinement::Criterion::uniform;
+    using Conditions = Parameters::Complementarity;
+    std::pair<Conditions, std::string> choice{Conditions::weighted, "two deformable bodies"};
+    if (fe_pair->dual_multiplier())
+      choice = {Conditions::weighted, "a dual pair: its conditions hold node by node"};
+    else if (!two_bodies)
+      choice = {Conditions::pointwise, "a rigid obstacle: the seed's formulation"};
+    else if (!contact_zones.empty())
+      choice = {Conditions::pointwise, "contact zones, built for the pointwise conditions"};
+    else if (local_refinement_3d)
+      choice = {Conditions::pointwise,
+                "adaptive refinement of a 3D contact surface makes hanging nodes"};
+    contact_parameters.complementarity = choice.first;
+    complementarity_choice             = "Complementarity = automatic: " +
+                             std::string(weighted_complementarity() ? "weighted" : "pointwise") +
+                             " (" + choice.second + ")";
+  }
+
+  template <int dim>
+  void
   ContactProblem<dim>::setup_nodal_conditions()
   {
     nodal = NodalConditions();
-    if (!weighted_complementarity())
-      return;
     // A constrained multiplier (a hanging node on Γc, a multiplier on a coarser
     // mesh) is no node of its own: its conditions would have to be split
     // among its masters, which the nodal conditions do not do.
     int constrained = 0;
-    for (const auto index : locally_relevant)
-      if (index >= n_u && hanging_constraints.is_constrained(index))
-        constrained = 1;
-    if (Utilities::MPI::max(constrained, mpi_communicator) == 1)
+    if (weighted_complementarity())
+      for (const auto index : locally_relevant)
+        if (index >= n_u && hanging_constraints.is_constrained(index))
+          constrained = 1;
+    constrained = Utilities::MPI::max(constrained, mpi_communicator);
+    if (constrained == 1 && contact_parameters.complementarity_automatic &&
+        !fe_pair->dual_multiplier())
+      {
+        contact_parameters.complementarity = Parameters::Complementarity::pointwise;
+        complementarity_choice = "Complementarity = automatic: pointwise (constrained multiplier "
+                                 "nodes on the contact surface: hanging nodes or a coarser "
+                                 "multiplier mesh)";
+        constrained            = 0;
+      }
+    if (!complementarity_choice.empty())
+      {
+        pcout << complementarity_choice << "\n";
+        complementarity_choice.clear();
+      }
+    if (!weighted_complementarity())
+      return;
+    if (constrained == 1)
       throw InputError(
           "Contact/Complementarity = weighted needs every multiplier node of the contact "
           "surface free, but this mesh and pair constrain some (hanging nodes on the contact "
@@ -506,6 +554,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::set_dual_multiplier_basis();                                                  \
   template std::map<std::pair<types::global_dof_index, types::global_dof_index>, double>                           \
                         ContactProblem<dim>::multiplier_mass() const;                                              \
+  template void         ContactProblem<dim>::choose_complementarity();                                             \
   template void         ContactProblem<dim>::setup_nodal_conditions();                                             \
   template void         ContactProblem<dim>::update_nodal_integrals(bool);                                         \
   template unsigned int ContactProblem<dim>::update_nodal_statuses(bool);                                          \

@@ -444,6 +444,16 @@ namespace StabilizedLagrangian
     {
       return contact_parameters.complementarity == Parameters::Complementarity::weighted;
     }
+    /**
+     * @brief `Complementarity = automatic`: weighted for two deformable bodies
+     * and dual pairs, pointwise against a rigid obstacle and where weighted does
+     * not apply (doc/formulation.md, "Which conditions by default"). The
+     * constrained multiplier nodes are seen by setup_nodal_conditions().
+     */
+    void
+    choose_complementarity();
+    /** With `automatic`: the choice and its reason, logged once the mesh is known */
+    std::string complementarity_choice;
     /** ContactFace::dual_basis of every contact face, with a dual pair. */
     void
     set_dual_multiplier_basis();
