@@ -219,6 +219,8 @@ Output goes to the directory of the entry Output/Output directory.
       Parameters::declare_all<3>(prm);
     else
       Parameters::declare_all<2>(prm);
+    // the listing is a parameter file of its dimension: run as is, it runs there
+    prm.set("Dimension", std::to_string(dim));
     if (root)
       prm.print_parameters(std::cout, ParameterHandler::PRM);
   }
