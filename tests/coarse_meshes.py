@@ -20,7 +20,6 @@ import sltest
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
-HERE = os.path.dirname(os.path.abspath(__file__))
 
 # nodes on a quarter arc, along the block's top, along its sides; the largest cell size
 MESHES = ((4, 5, 2, 12), (7, 9, 3, 6), (13, 18, 6, 3), (25, 35, 11, 1.5))
@@ -67,9 +66,6 @@ subsection Load stepping
 end
 """
 
-with open(os.path.join(HERE, "scenes", "cylinder_on_block.geo")) as f:
-    GEO = f.read()
-
 # The contact force is integrated with the pairing of the converged state; the nested loops
 # solve with that of the last geometry iteration, which differs by the geometry loop's
 # tolerance (relative displacement change 1e-4); the generalized Newton linearises it.
@@ -80,11 +76,8 @@ for algorithm, extra, balance in (("nested loops", "", 1e-4),
         name = f"{arc - 1} segments, {algorithm}"
         directory = os.path.join(workdir, algorithm.replace(" ", "_"), str(arc))
         os.makedirs(directory, exist_ok=True)
-        geo = GEO
-        for key, value in (("ARC", arc), ("TOP", top), ("SIDE", side), ("H", h)):
-            geo = geo.replace(f"@{key}@", str(value))
         with open(os.path.join(directory, "cylinder_on_block.geo"), "w") as f:
-            f.write(geo)
+            f.write(sltest.cylinder_on_block_geo(arc, top, side, h))
         if not sltest.run_checked(executable, PRM + extra, directory, check, name):
             pressed.append(None)
             continue

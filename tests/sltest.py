@@ -140,6 +140,17 @@ end
 """
 
 
+def cylinder_on_block_geo(arc=13, top=18, side=6, h=3):
+    """tests/scenes/cylinder_on_block.geo (a half cylinder, R = 10 mm, touching a block 30 x 10
+    mm at one point, non-matching quadrilaterals) with `arc` nodes on each quarter arc, `top`
+    along the block's top, `side` along its sides and cells at most `h` mm."""
+    with open(os.path.join(os.path.dirname(__file__), "scenes", "cylinder_on_block.geo")) as f:
+        geo = f.read()
+    for key, value in (("ARC", arc), ("TOP", top), ("SIDE", side), ("H", h)):
+        geo = geo.replace(f"@{key}@", str(value))
+    return geo
+
+
 def two_blocks(dim, mesh, friction, refinements=None):
     """tests/scenes/<mesh> (two blocks): the geometry (refined once in 2D, not in 3D unless
     refinements says), E = 1000 MPa, nu = 0.3, and the contact between the blocks' surfaces

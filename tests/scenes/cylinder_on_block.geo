@@ -1,7 +1,7 @@
 // A half cylinder (R = 10 mm, flat top y = 10) touching a block 30 x 10 mm at one point;
-// the bodies are kept apart (AutoCoherence = 0), non-matching quadrilaterals. N (nodes on
-// each quarter arc) and M (nodes along the block's top) set the mesh: tests/coarse_meshes.py
-// writes a copy with the @...@ placeholders replaced.
+// the bodies are kept apart (AutoCoherence = 0), non-matching quadrilaterals. @ARC@ nodes
+// on each quarter arc, @TOP@ along the block's top, @SIDE@ along its sides, cells at most
+// @H@ mm: tests/sltest.py cylinder_on_block_geo() replaces them.
 Geometry.AutoCoherence = 0;
 R = 10;
 Point(1) = {0, R, 0};
