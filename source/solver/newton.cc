@@ -59,28 +59,6 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::ActiveSetWatch::closes_contact_cycle(ContactProblem<dim> &problem) const
-  {
-    if (seen.size() < 2)
-      return false;
-    const auto open       = static_cast<unsigned char>(Contact::Status::open);
-    const auto in_contact = [open](const std::vector<unsigned char> &statuses) {
-      std::vector<unsigned char> contact(statuses.size());
-      for (unsigned int p = 0; p < statuses.size(); ++p)
-        contact[p] = statuses[p] != open;
-      return contact;
-    };
-    const std::vector<unsigned char>        trial = in_contact(problem.point_statuses());
-    std::vector<std::vector<unsigned char>> earlier;
-    for (const auto &statuses : seen)
-      earlier.push_back(in_contact(statuses));
-    const unsigned int current = earlier.size() - 1;
-    return problem.first_equal({earlier[current]}, trial, 1) == 1 &&
-           problem.first_equal(earlier, trial, current) < current;
-  }
-
-  template <int dim>
-  bool
   ContactProblem<dim>::newton_loop(StepStatistics    &stats,
                                    const unsigned int k,
                                    const unsigned int j,
@@ -88,24 +66,6 @@ namespace StabilizedLagrangian
   {
     // the open/stick/slip statuses of the iterates, when Newton decides them
     NewtonProgress progress(loops.linearised(Loop::status));
-    const bool     friction_folded        = loops.linearised(Loop::friction);
-    progress.watch.fold_friction_on_cycle = !friction_folded && any_pressure_dependent_threshold();
-    const bool converged                  = newton_iterations(stats, progress, k, j, i);
-    // a fold made for a cycle lasts for this Newton loop; the thresholds it
-    // left are s = μ λ_n of the last iterate, so a nested friction loop finds
-    // them converged
-    loops.fold(Loop::friction, friction_folded);
-    return converged;
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::newton_iterations(StepStatistics    &stats,
-                                         NewtonProgress    &progress,
-                                         const unsigned int k,
-                                         const unsigned int j,
-                                         const unsigned int i)
-  {
     // No Newton loop of this attempt has converged yet (a loop that fails
     // fails the attempt): this is the step's first Newton solve.
     if (stats.inner_loops.empty() && dirichlet_increment_nonzero)
@@ -139,41 +99,7 @@ namespace StabilizedLagrangian
         if (!newton_direction(stats, progress, measured, update))
           return false;
         advance(progress, update, measured.residual, solver_parameters.line_search_steps);
-        if (progress.watch.contact_cycle)
-          fold_friction_for_cycle(stats, progress);
       }
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::fold_friction_for_cycle(StepStatistics &stats, NewtonProgress &progress)
-  {
-    // With the threshold s frozen (a Tresca problem per friction iteration,
-    // seed §2.2) the residual jumps where a point opens: its tangential
-    // traction χ s P_B(ĝ) and its Λ row switch off with χ while s stays
-    // (the normal terms are continuous, χ λ̂ and the λ_n row agreeing at
-    // λ̂ = 0). A point that carried pressure at the start of the step and
-    // loses it (a corner that lifts when the sliding starts) then has no
-    // consistent status: closed, the frozen friction pulls it open (λ̂ < 0
-    // at the solution), open, it penetrates (λ̂ > 0); each full step of the
-    // semismooth Newton (Hintermüller, Ito & Kunisch 2002) lands on the
-    // other set, and the residual between them, s times the point's weight,
-    // does not shrink with the load step (s is the last step's). With s =
-    // μ λ_n linearised (seed §2.3; Alart & Curnier 1991, where the threshold
-    // is the augmented pressure's) the traction vanishes with the pressure
-    // and the residual is continuous there.
-    progress.watch.contact_cycle          = false;
-    progress.watch.fold_friction_on_cycle = false;
-    loops.fold(Loop::friction);
-    ++stats.folded_loops;
-    pcout << "  Newton: the contact statuses of a full step repeat those of an earlier iterate (a "
-             "cycle) with the friction threshold frozen; the friction threshold is folded into "
-             "the generalized Newton for this Newton loop\n";
-    // the iterate's system with the thresholds of the iterate, from a fresh
-    // reference for the non-monotone line search
-    assemble_newton_system(true);
-    progress.jacobian_current  = true;
-    progress.previous_residual = std::numeric_limits<double>::infinity();
   }
 
   template <int dim>
@@ -624,16 +550,6 @@ namespace StabilizedLagrangian
           return;
         if (inadmissible_state.empty())
           {
-            // a cycle of the active sets under a frozen friction threshold:
-            // the step is not taken (fold_friction_for_cycle())
-            if (halving == 0 && watch != nullptr && watch->fold_friction_on_cycle &&
-                watch->closes_contact_cycle(*this))
-              {
-                watch->contact_cycle = true;
-                solution             = start;
-                update_ghosts();
-                return;
-              }
             if (halving == 0 && watch != nullptr && watch->settling(*this))
               return;
             const double reference = halving == 0 ? previous_residual : residual;
@@ -678,10 +594,7 @@ namespace StabilizedLagrangian
   template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                         \
   template bool                       ContactProblem<dim>::newton_loop(                              \
       StepStatistics &, unsigned int, unsigned int, unsigned int);             \
-  template bool ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);             \
-  template bool ContactProblem<dim>::newton_iterations(                                              \
-      StepStatistics &, NewtonProgress &, unsigned int, unsigned int, unsigned int);                 \
-  template void   ContactProblem<dim>::fold_friction_for_cycle(StepStatistics &, NewtonProgress &);  \
+  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);           \
   template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);           \
   template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                      \
   template bool   ContactProblem<dim>::below_discretisation_error(double, double);                   \

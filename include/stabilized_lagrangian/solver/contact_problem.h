@@ -736,20 +736,6 @@ namespace StabilizedLagrangian
       /** Collective: whether the statuses at the trial iterate settle the active set. */
       bool
       settling(ContactProblem<dim> &problem);
-      /**
-       * Collective: whether the contact statuses (open or not) at the trial
-       * iterate differ from the current iterate's and repeat those of an
-       * earlier one: the full step closes a cycle among the active sets.
-       */
-      bool
-      closes_contact_cycle(ContactProblem<dim> &problem) const;
-      /**
-       * whether a cycle of the contact statuses folds the friction threshold
-       * (it is frozen and depends on the pressure; fold_friction_for_cycle())
-       */
-      bool fold_friction_on_cycle = false;
-      /** set by the line search: a full step closed such a cycle and was not taken */
-      bool contact_cycle = false;
     };
     /** What a Newton loop carries from one iteration to the next. */
     struct NewtonProgress
@@ -815,21 +801,6 @@ namespace StabilizedLagrangian
      */
     bool
     predictor_step(StepStatistics &stats, NewtonProgress &progress);
-    /** The iterations of newton_loop(), which restores the friction loop's fold after them. */
-    bool
-    newton_iterations(StepStatistics    &stats,
-                      NewtonProgress    &progress,
-                      const unsigned int geometry_iteration,
-                      const unsigned int friction_iteration,
-                      const unsigned int status_iteration);
-    /**
-     * The generalized Newton's full step closed a cycle of the contact
-     * statuses with the friction threshold frozen (ActiveSetWatch::contact_cycle):
-     * the threshold s = μ λ_n is folded into this Newton loop (seed §2.3)
-     * and the iterate's system assembled again (newton.cc explains why).
-     */
-    void
-    fold_friction_for_cycle(StepStatistics &stats, NewtonProgress &progress);
     /**
      * The residual of the last assembly, measured (and logged); false, with
      * the reason printed, when the iterate cannot go on.
