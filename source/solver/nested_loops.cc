@@ -203,9 +203,25 @@ namespace StabilizedLagrangian
           << "; the statuses are folded into the generalized Newton for this load step\n";
     ++stats.folded_loops;
     ++stats.status_iterations;
-    return fold_for_this_step(Loop::status, [&]() {
+    const bool converged = fold_for_this_step(Loop::status, [&]() {
       return newton_loop(stats, k, j, static_cast<unsigned int>(seen.size()));
     });
+    // Under a frozen threshold s the residual jumps where a point opens (its
+    // traction s P_B and its Λ row switch off while s stays): a point that
+    // carried pressure and loses it then has no consistent status (closed,
+    // the frozen friction pulls it open; open, it penetrates), and the
+    // folded statuses cycle as the fixed point did. With s = μ λ_n
+    // linearised (seed §2.3) the traction vanishes with the pressure: the
+    // attempt is repeated so (solve_load_step()).
+    if (!converged && !contact_start.friction_folded && !loops.linearised(Loop::friction) &&
+        any_pressure_dependent_threshold())
+      {
+        contact_start.fold_friction = true;
+        pcout << "  status loop: the folded statuses did not converge under this friction "
+                 "iteration's frozen thresholds; the step is repeated with the friction "
+                 "threshold folded into the generalized Newton\n";
+      }
+    return converged;
   }
 
   template <int dim>
