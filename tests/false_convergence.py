@@ -184,52 +184,18 @@ CYLINDER_ON_BLOCK_GEO = sltest.cylinder_on_block_geo()
 
 
 def cylinder_on_block(mesh_file, quadrature, complementarity):
-    return f"""set Dimension = 2
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {mesh_file}
-    set Global refinements = 0
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 20000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = cyl_contact
-  set Master boundary ids  = blk_contact
-  set r_n                  = automatic
-  set r_t                  = automatic
-  set Contact quadrature   = {quadrature}
-  set Complementarity      = {complementarity}
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
-  subsection Dirichlet base
-    set Boundary id = blk_bottom
-    set Components  = x, y
-  end
-  subsection Rigid plate press
+    return sltest.cylinder_on_block_prm(mesh_file, """  subsection Rigid plate press
     set Boundary id = cyl_top
     set Components  = x, y
     subsection Force
       set Function expression = 0; -500*t
     end
   end
-end
-subsection Load stepping
-  set Number of load steps = 2
-end
-"""
+""", 2, f"""  set r_n                  = automatic
+  set r_t                  = automatic
+  set Contact quadrature   = {quadrature}
+  set Complementarity      = {complementarity}
+""")
 
 
 def block(conditions, mu, E="200000", obstacle="", extra="", steps=2):

@@ -151,6 +151,47 @@ def cylinder_on_block_geo(arc=13, top=18, side=6, h=3):
     return geo
 
 
+def cylinder_on_block_prm(mesh_file, press, steps, contact=""):
+    """The scene of cylinder_on_block_geo() in `mesh_file`: linear elastic (E = 20000 MPa,
+    nu = 0.3), the cylinder's arc the slave, the block's top the master, Coulomb mu = 0.3,
+    the block's bottom held; `press`: the condition subsection(s) on the cylinder's top
+    (cyl_top); `contact`: further Contact entries; `steps` load steps."""
+    return f"""set Dimension = 2
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = {mesh_file}
+  end
+end
+subsection Material
+  set Model = linear elastic
+  subsection linear elastic
+    set Young's modulus = 20000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Contact
+  set Contact boundary ids = cyl_contact
+  set Master boundary ids  = blk_contact
+{contact}  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = 0.3
+    end
+  end
+end
+subsection Boundary conditions
+  subsection Dirichlet base
+    set Boundary id = blk_bottom
+    set Components  = x, y
+  end
+{press}end
+subsection Load stepping
+  set Number of load steps = {steps}
+end
+"""
+
+
 def two_blocks(dim, mesh, friction, refinements=None):
     """tests/scenes/<mesh> (two blocks): the geometry (refined once in 2D, not in 3D unless
     refinements says), E = 1000 MPa, nu = 0.3, and the contact between the blocks' surfaces
