@@ -396,7 +396,7 @@ namespace StabilizedLagrangian
         (dim == 3 && simplex_mesh())
             ? 1u
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
-    FaceEvaluator evaluator(*this, node_quadrature, false);
+    FaceEvaluator evaluator(spaces, node_quadrature, false);
     evaluator.use_nodal_coefficients();
     FaceNodes           nodes;
     const NodeResponses responses = weighted_complementarity() ? node_responses() : NodeResponses();

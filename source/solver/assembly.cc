@@ -443,7 +443,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::assemble_contact(const bool assemble_matrix)
   {
-    FaceEvaluator                    evaluator(*this, contact_quadrature);
+    FaceEvaluator                    evaluator(spaces, contact_quadrature);
     internal::ContactFaceSystem<dim> local(*fe_u, *fe_m);
     // the generalized Newton's linearised pairing: a curved obstacle's, and a
     // deformable master's (paired anew before the assembly, linearised in it)

@@ -25,6 +25,14 @@ namespace StabilizedLagrangian
       , dof_handler_u(triangulation)
       , dof_handler_m(triangulation)
       , verbose(verbose)
+      , spaces{fe_u,
+               fe_m,
+               dof_handler_m,
+               multiplier_dofs_on_face,
+               n_u,
+               n_multipliers,
+               step_start,
+               axisymmetric}
   {
     Utilities::System::get_memory_stats(memory_at_start);
     prm.enter_subsection("Geometry");

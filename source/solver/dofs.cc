@@ -804,7 +804,7 @@ namespace StabilizedLagrangian
           cell->get_dof_indices(u_dofs);
           newton_constraints.add_entries_local_to_global(u_dofs, dsp, false);
         }
-    FaceEvaluator evaluator(*this, contact_quadrature);
+    FaceEvaluator evaluator(spaces, contact_quadrature);
     sparsity_master_faces.assign(contact_faces.size(), {});
     for (unsigned int c = 0; c < contact_faces.size(); ++c)
       {

@@ -406,7 +406,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_contact_residuals(const TrilinosWrappers::MPI::Vector &u,
                                              Vector<double>                      &contact)
   {
-    FaceEvaluator                                evaluator(*this, contact_quadrature);
+    FaceEvaluator                                evaluator(spaces, contact_quadrature);
     std::unique_ptr<FEFaceValues<dim>>           face_values;
     const Quadrature<dim - 1>                   *rule = nullptr;
     std::vector<Tensor<2, dim>>                  gradients;
@@ -491,7 +491,7 @@ namespace StabilizedLagrangian
     // with a Gauss rule two orders above the pair's on each face: between
     // the nodes is where a linear λ_n departs most from a curved pressure
     const Quadrature<dim - 1> rule = face_gauss(fe_u->degree + 2);
-    FaceEvaluator             evaluator(*this, rule, false);
+    FaceEvaluator             evaluator(spaces, rule, false);
     FEFaceValues<dim> face_values(*fe_u, rule, update_normal_vectors | update_quadrature_points);
     // (on simplices the Gauss points of the same order: the centroid for P1)
     const Quadrature<dim> barlow = cell_gauss(fe_u->degree);
@@ -514,13 +514,13 @@ namespace StabilizedLagrangian
     });
     // the faces that hold the end of the contact zone: the square-root onset
     // fitted to their contact points, integrated finely across its kink
-    FaceEvaluator nodes(*this, contact_quadrature);
+    FaceEvaluator nodes(spaces, contact_quadrature);
     // (the finest simplex rule on triangle faces)
     const Quadrature<dim - 1> edge_rule =
         (dim == 3 && simplex_mesh())
             ? face_gauss(4)
             : Quadrature<dim - 1>(QIterated<dim - 1>(QGauss<1>(2), dim == 2 ? 16 : 8));
-    FaceEvaluator     edge_evaluator(*this, edge_rule, false);
+    FaceEvaluator     edge_evaluator(spaces, edge_rule, false);
     FEFaceValues<dim> edge_values(*fe_u, edge_rule, update_quadrature_points);
     const double      master_compliance = deformable_master_compliance();
     double            mismatch = 0., norm = 0., area = 0.;

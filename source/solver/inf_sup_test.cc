@@ -162,7 +162,7 @@ namespace StabilizedLagrangian
     std::vector<unsigned int> component(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
       component[i] = fe_u->system_to_component_index(i).first;
-    FaceEvaluator  evaluator(*this, quadrature, false);
+    FaceEvaluator  evaluator(spaces, quadrature, false);
     Vector<double> cell_row(n_dofs);
     double         contact_mesh_size = 0.;
     for (const auto &face : contact_faces)

@@ -67,7 +67,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::multiplier_mass() const
   {
     std::map<std::pair<types::global_dof_index, types::global_dof_index>, double> mass;
-    FaceEvaluator run_basis(*this, contact_quadrature), nodal_basis(*this, contact_quadrature);
+    FaceEvaluator run_basis(spaces, contact_quadrature), nodal_basis(spaces, contact_quadrature);
     nodal_basis.use_nodal_coefficients();
     for (const auto &face : contact_faces)
       {
@@ -212,7 +212,7 @@ namespace StabilizedLagrangian
   {
     TrilinosWrappers::MPI::Vector weights(locally_owned, mpi_communicator);
     TrilinosWrappers::MPI::Vector integrals(locally_owned, mpi_communicator);
-    FaceEvaluator                 evaluator(*this, contact_quadrature);
+    FaceEvaluator                 evaluator(spaces, contact_quadrature);
     PointRefresh                  what;
     what.pairing = pairing;
     for (const auto &face : contact_faces)
@@ -395,7 +395,7 @@ namespace StabilizedLagrangian
   {
     // each point takes the status and threshold of its nearest node (the
     // largest ψ_j there): for the output, the counts and the error estimate
-    FaceEvaluator evaluator(*this, contact_quadrature);
+    FaceEvaluator evaluator(spaces, contact_quadrature);
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
@@ -449,7 +449,7 @@ namespace StabilizedLagrangian
     // the forces of the multiplier field, ∫λ_n n + t_t over Γc
     double              normal_force = 0.;
     Tensor<1, dim>      normal_vector_force, tangential_force;
-    FaceEvaluator       evaluator(*this, contact_quadrature);
+    FaceEvaluator       evaluator(spaces, contact_quadrature);
     const NodeResponses responses = node_responses();
     FaceNodes           nodes;
     for (const auto &face : contact_faces)

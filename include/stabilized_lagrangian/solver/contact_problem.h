@@ -21,6 +21,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/contact/contact_edge.h>
+#include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/partner.h>
@@ -46,33 +47,6 @@
 namespace StabilizedLagrangian
 {
   using namespace dealii;
-
-  /**
-   * @brief State frozen at one contact integration point by the outer loops
-   * (doc/formulation.md, "Nested loops"): pairing and normal (geometry loop), friction threshold
-   * (friction loop), contact status (status loop).
-   */
-  template <int dim> struct ContactPointState
-  {
-    Contact::Pairing<dim> pairing;
-    double                friction_threshold = 0.;
-    bool                  in_contact         = false;
-    /** the contact zone: 0 the default friction law, k the `Contact/Zone` k's */
-    unsigned int zone = 0;
-  };
-
-  /**
-   * @brief Fields of the current iterate at one contact point.
-   */
-  template <int dim> struct ContactKinematics
-  {
-    Point<dim>         position;              ///< current position x = X + u
-    Tensor<1, dim>     displacement;          ///< u
-    Tensor<1, dim>     step_increment;        ///< Δu over the load step
-    double             contact_pressure = 0.; ///< λ_n
-    Tensor<1, dim - 1> semi_multiplier;       ///< Λ in the tangent basis
-    double             JxW = 0.;
-  };
 
   /**
    * @brief The blocks of the Newton residual, each against its own scale
@@ -300,34 +274,8 @@ namespace StabilizedLagrangian
     update_ghosts();
 
   private:
-    /** One face of Γc on a locally owned cell, and where its points start. */
-    struct ContactFace
-    {
-      typename DoFHandler<dim>::active_cell_iterator cell;
-      unsigned int                                   face_no;
-      unsigned int                                   first_point;
-      /**
-       * The face's own contact quadrature: the rule of `Contact quadrature` on
-       * each segment between the projections of the master's vertices (2D,
-       * deformable master), so the master's piecewise shape functions are
-       * integrated exactly; null: `contact_quadrature` on the whole face.
-       */
-      std::shared_ptr<const Quadrature<dim - 1>> segments;
-      /**
-       * With the nodal (Gauss–Lobatto) contact quadrature on a face whose
-       * Jacobian is not constant (not a parallelogram): the consistent weights
-       * W_q = ∫_F ℓ_q dΓ of its points (ℓ_q the Lagrange polynomial of point q),
-       * which replace the lumped weights w_q J(ξ_q) (doc/formulation.md,
-       * "Contact quadrature"); null elsewhere, where both agree.
-       */
-      std::shared_ptr<const std::vector<double>> nodal_weights;
-      /**
-       * With a dual multiplier basis (FEPair::dual_multiplier()): the face's
-       * A = D M⁻¹, ψ_p = Σ_r A_pr φ_r over the face's nodes (ascending base
-       * index of the multiplier element); null: the standard basis.
-       */
-      std::shared_ptr<const FullMatrix<double>> dual_basis;
-    };
+    /** One face of Γc on a locally owned cell (contact_surface.h). */
+    using ContactFace = StabilizedLagrangian::ContactFace<dim>;
     /** The contact points of @p face. */
     const Quadrature<dim - 1> &
     face_quadrature(const ContactFace &face) const
@@ -335,75 +283,8 @@ namespace StabilizedLagrangian
       return face.segments ? *face.segments : contact_quadrature;
     }
 
-    /**
-     * Evaluation of the fields on one contact face at the points of a face
-     * quadrature: used by the assembly, the loops and the output alike.
-     */
-    class FaceEvaluator
-    {
-    public:
-      /**
-       * With @p follow_segments (the contact quadrature), a face with its own
-       * quadrature (ContactFace::segments) is evaluated at its points, else at
-       * those of @p quadrature, and its consistent nodal weights
-       * (ContactFace::nodal_weights) are the points' JxW.
-       */
-      FaceEvaluator(const ContactProblem      &problem,
-                    const Quadrature<dim - 1> &quadrature,
-                    const bool                 follow_segments = true);
-      /**
-       * Evaluate the multipliers in the standard basis even with a dual one:
-       * at a node this gives its coefficient λ_j (the output).
-       */
-      void
-      use_nodal_coefficients()
-      {
-        nodal_coefficients = true;
-      }
-      void
-      reinit(const ContactFace &face, const TrilinosWrappers::MPI::Vector &ghosted_solution);
-      ContactKinematics<dim>
-      kinematics(const unsigned int q) const;
-      /** Number of points of the face of the last reinit(). */
-      unsigned int
-      n_points() const
-      {
-        return u_now.size();
-      }
-
-      std::unique_ptr<FEFaceValues<dim>>   u_values;
-      std::unique_ptr<FEFaceValues<dim>>   m_values;
-      std::vector<types::global_dof_index> u_dofs;
-      /** monolithic indices of the multiplier DoFs with support on the face */
-      std::vector<types::global_dof_index> m_dofs;
-      /** cell-local indices of those DoFs in the multiplier element */
-      std::vector<unsigned int> m_local;
-      /** the basis function ψ of multiplier @p a (index in m_dofs) at point @p q */
-      double
-      psi(const unsigned int a, const unsigned int q) const
-      {
-        return m_shapes(a, q);
-      }
-      /** all of them, (a, q) */
-      const Table<2, double> &
-      multiplier_shapes() const
-      {
-        return m_shapes;
-      }
-
-    private:
-      const ContactProblem     &problem;
-      const Quadrature<dim - 1> quadrature;
-      const bool                follow_segments;
-      /** the quadrature u_values and m_values were built for (null: `quadrature`) */
-      const Quadrature<dim - 1> *current = nullptr;
-      /** the consistent nodal weights of the face of the last reinit(), if any */
-      const std::vector<double>  *weights = nullptr;
-      std::vector<Tensor<1, dim>> u_now, u_start;
-      std::vector<double>         m_coefficients;
-      Table<2, double>            m_shapes;
-      bool                        nodal_coefficients = false;
-    };
+    /** The evaluation of the fields on one contact face (contact_surface.h). */
+    using FaceEvaluator = StabilizedLagrangian::FaceEvaluator<dim>;
 
     /**
      * The segments of one contact face (ContactFace::segments) from its
@@ -992,7 +873,7 @@ namespace StabilizedLagrangian
     double
     radial_weight(const Point<dim> &x) const
     {
-      return axisymmetric ? 2. * numbers::PI * x[0] : 1.;
+      return spaces.radial_weight(x);
     }
     /**
      * The hoop strain u_r / r at @p x of an axisymmetric model, 0 otherwise;
@@ -1150,8 +1031,7 @@ namespace StabilizedLagrangian
     typename DoFHandler<dim>::active_cell_iterator
     multiplier_cell(const typename DoFHandler<dim>::active_cell_iterator &cell) const
     {
-      return typename DoFHandler<dim>::active_cell_iterator(
-          &triangulation, cell->level(), cell->index(), &dof_handler_m);
+      return spaces.multiplier_cell(cell);
     }
     /** Whether face @p f of @p cell lies on the contact boundary Γc. */
     template <typename CellIterator>
@@ -1276,7 +1156,7 @@ namespace StabilizedLagrangian
     void
     visit_contact_points(const Function &f)
     {
-      FaceEvaluator evaluator(*this, contact_quadrature);
+      FaceEvaluator evaluator(spaces, contact_quadrature);
       for (const auto &face : contact_faces)
         {
           evaluator.reinit(face, ghosted_solution);
@@ -1959,6 +1839,8 @@ namespace StabilizedLagrangian
     std::vector<Point<dim>> active_set;
     double                  last_normal_force = 0.;
     bool                    verbose;
+    /** The spaces FaceEvaluator reads, views of this problem's members. */
+    const ContactSpaces<dim> spaces;
     /** which loops iterate, which are folded into Newton (LoopPolicy) */
     LoopPolicy                                  loops;
     std::string                                 parameters_used;
