@@ -398,13 +398,11 @@ namespace StabilizedLagrangian
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
     FaceEvaluator evaluator(spaces, node_quadrature, false);
     evaluator.use_nodal_coefficients();
-    FaceNodes           nodes;
-    const NodeResponses responses = weighted_complementarity() ? node_responses() : NodeResponses();
+    conditions->prepare_sampling();
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
-        if (weighted_complementarity())
-          face_node_responses(evaluator, responses, nodes);
+        conditions->reinit_face(evaluator);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
             &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
         const auto   vertex_face = field_cell->face(face.face_no);
@@ -413,7 +411,7 @@ namespace StabilizedLagrangian
           {
             const Point<dim>         &X      = evaluator.u_values->quadrature_point(q);
             const std::vector<double> values = contact_field_values(
-                fields, evaluator.kinematics(q), nearest_node(evaluator, nodes, q));
+                fields, evaluator.kinematics(q), conditions->response_at(evaluator, q));
             for (unsigned int d = 0; d < dim; ++d)
               profile.push_back(X[d]);
             profile.insert(profile.end(), values.begin(), values.end());

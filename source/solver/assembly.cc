@@ -449,17 +449,8 @@ namespace StabilizedLagrangian
     // deformable master's (paired anew before the assembly, linearised in it)
     const bool   linearise_geometry = loops.pairing_turns() || loops.pairs_before_assembly();
     PointRefresh refresh            = loops.at_iterate();
-    // weighted: the nodes' statuses and thresholds come from the whole of
-    // their supports, so what the iterate refreshes is refreshed first
-    const bool    weighted = weighted_complementarity();
-    FaceNodes     nodes;
-    NodeResponses responses;
-    if (weighted)
-      {
-        prepare_nodal_conditions(refresh);
-        refresh   = PointRefresh();
-        responses = node_responses();
-      }
+    // what the conditions do not refresh themselves, each point refreshes
+    refresh = conditions->prepare_assembly(refresh);
     for (const auto &face : contact_faces)
       {
         evaluator.reinit(face, ghosted_solution);
@@ -467,8 +458,7 @@ namespace StabilizedLagrangian
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           local.add_partner_dofs(*partner, contact_states[face.first_point + q].pairing);
         local.finish_dofs();
-        if (weighted)
-          face_node_responses(evaluator, responses, nodes);
+        conditions->reinit_face(evaluator);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
             ContactPointState<dim> &state = contact_states[face.first_point + q];
@@ -481,19 +471,7 @@ namespace StabilizedLagrangian
                              state.pairing,
                              linearise_geometry ? &k.step_increment : nullptr,
                              k.position - state.pairing.master_point);
-            if (weighted)
-              {
-                local.add_weighted_residual(
-                    nodes.of_multiplier, state.pairing.gap(k.position), k.JxW);
-                if (assemble_matrix)
-                  local.add_weighted_jacobian(
-                      nodes.of_multiplier, state.pairing, k.JxW, linearise_geometry);
-                continue;
-              }
-            const auto point = point_response(state, k);
-            local.add_residual(point, k.JxW);
-            if (assemble_matrix)
-              local.add_jacobian(point, state.pairing, k.JxW, linearise_geometry);
+            conditions->add_point(local, state, k, assemble_matrix, linearise_geometry);
           }
         newton_constraints.distribute_local_to_global(
             local.length_weights, local.dofs, multiplier_length_weights);

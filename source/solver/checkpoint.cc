@@ -686,7 +686,7 @@ namespace StabilizedLagrangian
       }
     out.put(segments);
     out.put(contact_states);
-    out.put(owned_nodal_states());
+    out.put(conditions->owned_states());
     out.put(active_set);
     out.put(material_history.committed_data());
     out.put(statistics.state());
@@ -813,7 +813,7 @@ namespace StabilizedLagrangian
           throw_damaged(path, e.what());
         }
       fits(saved.states.size(), contact_states.size(), "contact points");
-      fits(saved.nodal_states.size(), 2 * nodal.owned_nodes.size(), "nodal state values");
+      fits(saved.nodal_states.size(), conditions->n_state_values(), "nodal state values");
       fits(saved.history.size(),
            material_history.committed_data().size(),
            "material history values");
@@ -842,7 +842,7 @@ namespace StabilizedLagrangian
     update_ghosts();
     step_start     = ghosted_solution;
     contact_states = saved.states;
-    restore_nodal_states(saved.nodal_states);
+    conditions->restore_states(saved.nodal_states);
     active_set = saved.active_set;
     material_history.restore(saved.history);
     pvd_records = saved.pvd_records;

@@ -47,7 +47,7 @@ namespace StabilizedLagrangian
     for (auto &state : contact_states)
       if (!friction_law_of(state).threshold_depends_on_pressure())
         state.friction_threshold = friction_law_of(state).threshold(0.);
-    setup_nodal_conditions();
+    setup_contact_conditions();
 
     // initial statuses from the initial configuration: touching points are in contact
     sparsity_ready = false;

@@ -249,7 +249,7 @@ namespace StabilizedLagrangian
   {
     solution       = problem.solution;
     contact_states = problem.contact_states;
-    nodal          = problem.nodal;
+    conditions     = problem.conditions->copy();
     contact_faces  = problem.contact_faces;
     time           = problem.time;
   }
@@ -260,9 +260,9 @@ namespace StabilizedLagrangian
   {
     problem.solution       = solution;
     problem.contact_states = contact_states;
-    problem.nodal          = nodal;
-    problem.contact_faces  = contact_faces;
-    problem.time           = time;
+    problem.conditions->restore(*conditions);
+    problem.contact_faces = contact_faces;
+    problem.time          = time;
     problem.update_ghosts();
   }
 
@@ -574,7 +574,7 @@ namespace StabilizedLagrangian
          << path_work.jacobians << ',' << last_step.estimated_error << ','
          << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
          << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max << ','
-         << (weighted_complementarity() ? 1 : 0);
+         << (conditions->nodal() ? 1 : 0);
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)

@@ -228,14 +228,7 @@ namespace StabilizedLagrangian
   std::vector<unsigned char>
   ContactProblem<dim>::contact_statuses() const
   {
-    std::vector<unsigned char> statuses;
-    if (weighted_complementarity())
-      for (const auto &node : nodal.owned_nodes)
-        statuses.push_back(nodal.status(node.first) > 0.5);
-    else
-      for (const auto &state : contact_states)
-        statuses.push_back(state.in_contact);
-    return statuses;
+    return conditions->contact_statuses();
   }
 
   template <int dim>
@@ -256,19 +249,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::update_statuses()
   {
     TimerOutput::Scope scope(timer, "contact search");
-    if (weighted_complementarity())
-      {
-        const unsigned int changes = update_nodal_statuses(false);
-        copy_nodal_states_to_points();
-        return changes;
-      }
-    unsigned int changes = 0;
-    PointRefresh what;
-    what.status = true;
-    refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
-      changes += before.in_contact != state.in_contact;
-    });
-    return Utilities::MPI::sum(changes, mpi_communicator);
+    return conditions->update_statuses();
   }
 
   template <int dim>
@@ -276,25 +257,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::update_friction_thresholds()
   {
     TimerOutput::Scope scope(timer, "contact search");
-    if (weighted_complementarity())
-      {
-        const double change = update_nodal_thresholds();
-        copy_nodal_states_to_points();
-        return change;
-      }
-    double       max_change = 0., max_threshold = 0.;
-    PointRefresh what;
-    what.threshold = true;
-    refresh_contact_points(what, [&](const auto &before, const auto &state, const auto &) {
-      const double s = state.friction_threshold;
-      max_change     = std::max(max_change, std::abs(s - before.friction_threshold));
-      max_threshold  = std::max(max_threshold, s);
-    });
-    max_change    = Utilities::MPI::max(max_change, mpi_communicator);
-    max_threshold = Utilities::MPI::max(max_threshold, mpi_communicator);
-    if (max_threshold == 0.)
-      return max_change == 0. ? 0. : 1.;
-    return max_change / max_threshold;
+    return conditions->update_thresholds();
   }
 
   // Explicit instantiation of the members defined in this file (the class

@@ -16,14 +16,7 @@ namespace StabilizedLagrangian
   std::vector<unsigned char>
   ContactProblem<dim>::point_statuses()
   {
-    if (weighted_complementarity())
-      return nodal_statuses();
-    std::vector<unsigned char> statuses;
-    statuses.reserve(contact_states.size());
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      statuses.push_back(static_cast<unsigned char>(point_response(state, k).status()));
-    });
-    return statuses;
+    return conditions->statuses();
   }
 
   template <int dim>
@@ -318,7 +311,7 @@ namespace StabilizedLagrangian
     // force over the area in contact (or 1e-6 E where the loads are
     // prescribed displacements), so that they stick; the loops then take s
     // from λ_n. (The weighted conditions keep their nodal thresholds.)
-    if (contact_start.provisional_used || weighted_complementarity() ||
+    if (contact_start.provisional_used || conditions->nodal() ||
         !any_pressure_dependent_threshold())
       return false;
     const ContactCensus census = contact_census();

@@ -33,13 +33,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_contact_statistics(StepStatistics &stats)
   {
-    unsigned int   counts[4]    = {0, 0, 0, 0}; // all, in contact, stick, slip
-    double         normal_force = 0.;
-    Tensor<1, dim> total_force, tangential_force;
-    double         largest_displacement = 0.;
-    // per zone (0: the default law's boundaries): normal force, tangential force vector
-    std::vector<double>         zone_normal(contact_zones.size() + 1, 0.);
-    std::vector<Tensor<1, dim>> zone_tangential(contact_zones.size() + 1);
+    double largest_displacement = 0.;
     for (const auto i : locally_owned_u)
       largest_displacement = std::max(largest_displacement, std::abs(solution(i)));
     // the multiplier equations of the converged iterate (system_rhs is its residual)
@@ -48,50 +42,7 @@ namespace StabilizedLagrangian
       if (multiplier_length_weights(row) > 0.)
         check.add_multiplier_row(component == 0,
                                  std::abs(system_rhs(row)) / multiplier_length_weights(row));
-    if (weighted_complementarity())
-      {
-        weighted_contact_statistics(stats, check);
-        stats.friction_law_violations =
-            check.gather(mpi_communicator, solver_parameters.friction_tolerance);
-        stats.friction_law_report = check.report();
-        compute_reactions(stats);
-        return;
-      }
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      const auto point = point_response(state, k);
-      ++counts[0];
-      if (point.status() == Contact::Status::open)
-        return;
-      ++counts[1];
-      ++counts[point.status() == Contact::Status::stick ? 2 : 3];
-      check.add_point(k.position - k.displacement,
-                      point.tangential_traction().norm(),
-                      friction_law_of(state).threshold(threshold_pressure(k.contact_pressure)));
-      active_set.push_back(k.position - k.displacement);
-      normal_force += k.JxW * point.normal_traction();
-      total_force += k.JxW * point.normal_traction() * state.pairing.normal;
-      tangential_force +=
-          k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
-      zone_normal[state.zone] += k.JxW * point.normal_traction();
-      zone_tangential[state.zone] +=
-          k.JxW * state.pairing.from_tangential_components(point.tangential_traction());
-    });
-    stats.zone_forces.assign(contact_zones.size(), {{0., 0.}});
-    for (unsigned int z = 0; z < contact_zones.size(); ++z)
-      stats.zone_forces[z] = {
-          {Utilities::MPI::sum(zone_normal[z + 1], mpi_communicator),
-           Utilities::MPI::sum(zone_tangential[z + 1], mpi_communicator).norm()}};
-    total_force += tangential_force;
-    stats.contact_points            = Utilities::MPI::sum(counts[0], mpi_communicator);
-    stats.points_in_contact         = Utilities::MPI::sum(counts[1], mpi_communicator);
-    stats.points_stick              = Utilities::MPI::sum(counts[2], mpi_communicator);
-    stats.points_slip               = Utilities::MPI::sum(counts[3], mpi_communicator);
-    stats.normal_force              = Utilities::MPI::sum(normal_force, mpi_communicator);
-    const Tensor<1, dim> total      = Utilities::MPI::sum(total_force, mpi_communicator);
-    const Tensor<1, dim> tangential = Utilities::MPI::sum(tangential_force, mpi_communicator);
-    stats.tangential_force          = tangential.norm();
-    for (unsigned int d = 0; d < dim; ++d)
-      stats.contact_force[d] = total[d];
+    conditions->statistics(stats, check, active_set);
     stats.friction_law_violations =
         check.gather(mpi_communicator, solver_parameters.friction_tolerance);
     stats.friction_law_report = check.report();

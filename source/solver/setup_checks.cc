@@ -202,25 +202,10 @@ namespace StabilizedLagrangian
     nearest                     = Utilities::MPI::min(nearest, mpi_communicator);
     contact_start.approach_gap  = std::max(nearest, 0.) + touching_gap;
     contact_start.approach_used = true;
-    if (weighted_complementarity())
-      {
-        // the nodes' weighted gaps ∫ψ_j g_n / ∫ψ_j: the nearest node closes
-        update_nodal_integrals(false);
-        double nearest_node = std::numeric_limits<double>::max();
-        for (const auto &node : nodal.owned_nodes)
-          if (nodal.weights(node.first) > 0.)
-            nearest_node =
-                std::min(nearest_node, nodal.integrals(node.first) / nodal.weights(node.first));
-        nearest_node = Utilities::MPI::min(nearest_node, mpi_communicator);
-        contact_start.approach_gap =
-            std::max(contact_start.approach_gap, std::max(nearest_node, 0.) + touching_gap);
-        update_nodal_statuses(true);
-        copy_nodal_states_to_points();
-      }
-    else
-      for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-        state.in_contact = state.pairing.gap(k.position) <= nearest + touching_gap;
-      });
+    // the conditions' own gaps (the nodes' weighted gaps): the nearest closes
+    contact_start.approach_gap =
+        std::max(contact_start.approach_gap, std::max(conditions->least_gap(), 0.) + touching_gap);
+    conditions->close_nearest(nearest, touching_gap);
     pcout << "  nothing touches the "
           << (free_rigid_motions.empty()
                   ? std::string("partner and the Newton system is singular")

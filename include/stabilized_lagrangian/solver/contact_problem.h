@@ -20,6 +20,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
@@ -111,7 +112,7 @@ namespace StabilizedLagrangian
    * refinement, checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test;
    * output in source/postprocessing/output.cc.
    */
-  template <int dim> class ContactProblem
+  template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
   public:
     /**
@@ -295,31 +296,7 @@ namespace StabilizedLagrangian
     std::shared_ptr<const Quadrature<dim - 1>>
     face_segments(const FaceEvaluator &corners) const;
 
-    // --- weighted_contact.cc: `Contact/Complementarity = weighted` ---
-    /**
-     * The nodal conditions (doc/formulation.md, "Weighted complementarity"):
-     * ghosted vectors in the solution's layout, set on the multiplier DoFs.
-     */
-    struct NodalConditions
-    {
-      TrilinosWrappers::MPI::Vector weights; ///< D_j = ∫ψ_j at every multiplier DoF
-      TrilinosWrappers::MPI::Vector integrals; ///< ∫ψ_j g_n at λ_n DoFs, ∫ψ_j Δs_α at Λ_α DoFs
-      TrilinosWrappers::MPI::Vector status;     ///< χ_j, 1 or 0, at the λ_n DoFs (status loop)
-      TrilinosWrappers::MPI::Vector thresholds; ///< s_j at the λ_n DoFs (friction loop)
-      /** the owned nodes: the λ_n DoF, and the Λ DoFs of the same node */
-      std::vector<std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
-          owned_nodes;
-      /** likewise, every node of this rank's contact faces (owned and ghost) */
-      std::vector<std::pair<types::global_dof_index, std::vector<types::global_dof_index>>> nodes;
-    };
-    /** The response of every node of this rank's contact faces, by its λ_n DoF. */
-    using NodeResponses = std::map<types::global_dof_index, Contact::PointResponse<dim - 1>>;
-    /** The responses of the nodes of one face's multipliers. */
-    struct FaceNodes
-    {
-      /** per multiplier of the face (FaceEvaluator::m_dofs), its node's response */
-      std::vector<const Contact::PointResponse<dim - 1> *> of_multiplier;
-    };
+    // --- weighted_contact.cc: the choice of the contact conditions ---
     bool
     weighted_complementarity() const
     {
@@ -338,68 +315,16 @@ namespace StabilizedLagrangian
     /** ContactFace::dual_basis of every contact face, with a dual pair. */
     void
     set_dual_multiplier_basis();
-    /** Size the nodal vectors, find the owned nodes; refuse constrained multipliers. */
-    void
-    setup_nodal_conditions();
-    /** D_j, ∫ψ_j g_n and ∫ψ_j Δs at the iterate (the pairing refreshed with @p pairing). */
-    void
-    update_nodal_integrals(const bool pairing);
     /**
-     * The face's multipliers grouped by node: per base DoF, the DoFs @p global
-     * (of the local indices @p local) of λ_n, then Λ_α.
+     * The contact conditions of this mesh (make_contact_conditions(), the one
+     * place that names them): refuse, or with `automatic` avoid, the weighted
+     * conditions on constrained multiplier nodes.
      */
-    std::map<unsigned int, std::vector<types::global_dof_index>>
-    multiplier_nodes(const std::vector<unsigned int>            &local,
-                     const std::vector<types::global_dof_index> &global) const;
-    /**
-     * The status χ_j of every node at the iterate (the integrals recomputed
-     * unless @p integrals_current); returns how many changed. The points'
-     * copies (copy_nodal_states_to_points()) are left to the caller.
-     */
-    unsigned int
-    update_nodal_statuses(const bool integrals_current);
-    /** The threshold s_j of every node; returns the largest change against the largest s_j (the
-     * points' copies left to the caller). */
-    double
-    update_nodal_thresholds();
-    /** Before an assembly: the integrals, and what the generalized Newton folds (@p refresh). */
     void
-    prepare_nodal_conditions(const PointRefresh &refresh);
-    /** The stabilized Lagrangian of a node on its weighted gap and slip, with its χ_j and s_j. */
-    Contact::PointResponse<dim - 1>
-    nodal_response(const types::global_dof_index               node,
-                   const std::vector<types::global_dof_index> &semi_dofs) const;
-    /** Every node's response, once (an assembly, the output, the statistics). */
-    NodeResponses
-    node_responses() const;
-    /** The responses of the nodes of the face @p evaluator was last set to. */
-    void
-    face_node_responses(const FaceEvaluator &evaluator,
-                        const NodeResponses &responses,
-                        FaceNodes           &nodes) const;
-    /**
-     * The response of the node with the largest ψ_j at point @p q of the face
-     * @p nodes were computed for; null without weighted complementarity.
-     */
-    /** The index in FaceEvaluator::m_dofs of the λ_n with the largest ψ_j at point @p q. */
-    unsigned int
-    nearest_multiplier(const FaceEvaluator &evaluator, unsigned int q) const;
-    const Contact::PointResponse<dim - 1> *
-    nearest_node(const FaceEvaluator &evaluator, const FaceNodes &nodes, unsigned int q) const;
-    /** Each contact point takes the status and threshold of its nearest node. */
-    void
-    copy_nodal_states_to_points();
-    /** Open, stick or slip of the owned nodes (the active-set watch, the status cycles). */
-    std::vector<unsigned char>
-    nodal_statuses() const;
-    /** compute_contact_statistics() per node, the forces of the multiplier field. */
-    void
-    weighted_contact_statistics(StepStatistics &stats, Contact::FrictionLawCheck<dim> &check);
-    /** χ_j and s_j of the owned nodes, for a checkpoint; and back. */
-    std::vector<double>
-    owned_nodal_states() const;
-    void
-    restore_nodal_states(const std::vector<double> &values);
+    setup_contact_conditions();
+    /** What the contact conditions read and write: views of this problem's members. */
+    ContactConditionsData<dim>
+    conditions_data();
 
     // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
     /** What the refinement cycles took in all (an accuracy target reports it). */
@@ -444,11 +369,11 @@ namespace StabilizedLagrangian
      */
     struct StepSnapshot
     {
-      TrilinosWrappers::MPI::Vector       solution;
-      std::vector<ContactPointState<dim>> contact_states;
-      NodalConditions                     nodal;
-      std::vector<ContactFace>            contact_faces;
-      double                              time = 0.;
+      TrilinosWrappers::MPI::Vector           solution;
+      std::vector<ContactPointState<dim>>     contact_states;
+      std::unique_ptr<ContactConditions<dim>> conditions;
+      std::vector<ContactFace>                contact_faces;
+      double                                  time = 0.;
       /** Copy the state of @p problem. */
       void
       save(const ContactProblem &problem);
@@ -1194,7 +1119,8 @@ namespace StabilizedLagrangian
      * @p state (with the threshold's slope when it is linearised).
      */
     Contact::PointResponse<dim - 1>
-    point_response(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
+    point_response(const ContactPointState<dim> &state,
+                   const ContactKinematics<dim> &k) const override;
     /**
      * The one evaluation of a contact point's state at the iterate, which the
      * loops, the folded refresh in the assembly and the output share: pair the
@@ -1205,13 +1131,13 @@ namespace StabilizedLagrangian
     void
     evaluate_point_state(ContactPointState<dim> &state,
                          ContactKinematics<dim> &k,
-                         const PointRefresh     &what) const;
+                         const PointRefresh     &what) const override;
     /**
      * The gap the status test sees: @p gap, or 0 within touching_gap (or
      * approach_gap) of zero.
      */
     double
-    status_gap(const double gap) const
+    status_gap(const double gap) const override
     {
       return std::abs(gap) <= std::max(touching_gap, contact_start.approach_gap) ? 0. : gap;
     }
@@ -1220,7 +1146,7 @@ namespace StabilizedLagrangian
     status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
     /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
     double
-    threshold_pressure(double contact_pressure) const;
+    threshold_pressure(double contact_pressure) const override;
 
     // --- assembly.cc: assembly of the Newton system and its residual ---
     /** The material of a cell (by its body, `Material 2`, `Material 3`, else `Material`). */
@@ -1658,7 +1584,7 @@ namespace StabilizedLagrangian
     std::map<types::boundary_id, unsigned int> zone_of_boundary;
     /** The friction law at a contact point: its zone's, or Contact/Friction law. */
     const FrictionLaws::Interface &
-    friction_law_of(const ContactPointState<dim> &state) const
+    friction_law_of(const ContactPointState<dim> &state) const override
     {
       return state.zone == 0 ? *friction_law : *contact_zones[state.zone - 1].friction_law;
     }
@@ -1831,8 +1757,8 @@ namespace StabilizedLagrangian
 
     std::vector<ContactFace>            contact_faces;
     std::vector<ContactPointState<dim>> contact_states;
-    /** `Contact/Complementarity = weighted`: the conditions per multiplier node */
-    NodalConditions nodal;
+    /** the contact conditions, pointwise or weighted (setup_contact_conditions()) */
+    std::unique_ptr<ContactConditions<dim>> conditions;
 
     double time = 0.;
     /** reference positions of the points in contact at the end of some step on this mesh */
