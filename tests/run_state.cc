@@ -20,7 +20,9 @@
 #include "check_tools.h"
 
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,59 +40,20 @@ namespace
   std::string
   scene(const double wall_time_limit)
   {
-    return R"(
+    std::ifstream      file(std::string(SL_PRM_DIR) + "/patin_elastic.prm");
+    std::ostringstream text;
+    text << file.rdbuf();
+    // (a later `set` of an entry replaces the file's)
+    return text.str() + R"(
 subsection Geometry
-  set Model = block
   subsection block
-    set Length             = 100
-    set Height             = 50
-    set Subdivisions       = 2, 1
     set Global refinements = 2
-  end
-end
-subsection Obstacle
-  set Model = plane
-  subsection plane
-    set Point  = 0, 0
-    set Normal = 0, 1
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 200000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = 2
-  set r_n                  = automatic
-  set r_t                  = automatic
-  set Finite element pair  = Q1/P1
-  set Contact quadrature   = Gauss-Lobatto
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.1
-    end
-  end
-end
-subsection Boundary conditions
-  subsection Dirichlet 1
-    set Boundary id = 3
-    set Components  = x, y
-    subsection Displacement
-      set Function constants  = u0=0.5
-      set Function expression = if(t < 0.5, 0, u0*(t - 0.5)/0.5); -u0*min(t/0.5, 1)
-      set Variable names      = x,y,t
-    end
   end
 end
 subsection Nonlinear solver
   set Maximum Newton iterations per load step = 7
 end
 subsection Load stepping
-  set End time             = 1
   set Number of load steps = 4
   set Maximum step cuts    = 8
   set Wall time limit      = )" +

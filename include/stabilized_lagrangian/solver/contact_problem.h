@@ -137,7 +137,9 @@ namespace StabilizedLagrangian
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, nested_loops.cc the loops of seed §2.2,
    * newton.cc the Newton iteration, refinement.cc adaptive
-   * refinement, checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test;
+   * refinement, run_state_list.cc the run's state (what a step cut restores
+   * and a checkpoint keeps), checkpoint.cc checkpoints, inf_sup_test.cc the
+   * inf-sup test;
    * output in source/postprocessing/output.cc.
    */
   template <int dim> class ContactProblem
