@@ -12,7 +12,8 @@ refinement history names cells by id), checkpoint at the end. Damages:
 - crafted fields, the checksum sealed again: cell ids garbage, over-long, too deep, of another
   level, naming no cell or a refined one; huge counts of refinements, cells, characters,
   solution values and segments; another header, dimension or rank; non-finite or non-positive
-  time and step size; bytes added before the end marker;
+  time and step size; bytes added before the end marker; an entry of the run's state renamed or
+  longer than it reads;
 - bytes flipped in the leading fields with the checksum sealed again (any exit but a signal);
 - a damaged manifest, the rank file replaced by a directory, a damaged parameters.prm,
   statistics.csv shorter than the checkpoint says or cut inside a row.
@@ -33,7 +34,7 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 sltest.seed_random("SL_DAMAGE_SEED", "damaged offsets")
-MAGIC = b"stabilized_lagrangian checkpoint 4"
+MAGIC = b"stabilized_lagrangian checkpoint 5"
 CRASH_SIGNS = ("Segmentation", "stack smashing", "core dumped", "terminate called", "Aborted",
                "double free", "corrupted", "std::bad_alloc")
 
@@ -52,8 +53,8 @@ def seal(body):
 
 
 def layout(data):
-    """Offsets of the leading fields of a rank file (write_checkpoint's order) and the cell ids:
-    [(offset of the length, length)]."""
+    """Offsets of the leading fields of a rank file (write_checkpoint's order; the run's state
+    by the names of its entries) and the cell ids: [(offset of the length, length)]."""
     fields, cells, pos = {}, [], 0
 
     def u64():
@@ -75,19 +76,23 @@ def layout(data):
             cells.append((pos, struct.unpack_from("<Q", data, pos)[0]))
             pos += 8 + cells[-1][1]
     fields["cycle"] = pos
-    fields["time"] = pos + 4
-    fields["step_size"] = pos + 12 + 8  # LoadStepController::State: step (and padding), size, cuts
-    pos += 4 + 8 + 24 + 2 * 72  # cycle, time, the controller, two WorkCounters
-    fields["last_normal_force"] = pos
-    pos += 8
-    fields["n_solution"] = pos
-    n = u64()
-    pos += 8 * n
-    pos += 8  # the last step size
-    fields["n_segments"] = pos
-    n = u64()
-    pos += 8 * n
-    fields["n_states"] = pos
+    pos += 4
+    # the run's state (RunState::write): per entry its name, then its bytes
+    fields["n_entries"] = pos
+    entries = {}
+    for _ in range(u64()):
+        length = u64()
+        name = data[pos:pos + length].decode()
+        pos += length
+        fields["size of " + name] = pos
+        entries[name] = pos + 8
+        pos += 8 + u64()
+    fields["time"] = entries["time"]
+    fields["step_size"] = entries["load stepping"] + 8  # LoadStepController::State: step, size
+    fields["last_normal_force"] = entries["last normal force"]
+    fields["n_solution"] = entries["solution"]
+    fields["n_segments"] = entries["contact faces"]
+    fields["n_states"] = entries["contact points"]
     return fields, cells
 
 
@@ -170,7 +175,7 @@ hertz = Case("hertz_adaptive",
              .replace("set Local refinements       = 4", "set Local refinements       = 1"), 1)
 data = hertz.rank_file()
 check(data[8:8 + len(MAGIC)] == MAGIC and struct.unpack("<Q", data[-8:])[0] == fnv1a(data[:-8]),
-      f"the rank file is a version 4 checkpoint with its checksum ({len(data)} bytes)")
+      f"the rank file is a version 5 checkpoint with its checksum ({len(data)} bytes)")
 fields, cells = layout(data)
 time_value = struct.unpack_from("<d", data, fields["time"])[0]
 check(len(cells) > 0 and time_value == 1.0,
@@ -193,12 +198,14 @@ def with_cell_id(text, index=0):
     return seal(body[:offset] + struct.pack("<Q", len(text)) + text + body[offset + 8 + length:])
 
 
-def one_value_fewer(count):
-    """The body without the first value of the vector whose count is the field `count`, sealed
-    again."""
-    offset = fields[count]
+def one_value_fewer(count, entry):
+    """The body without the first value of the vector whose count is the field `count`, the size
+    of its state `entry` told, sealed again."""
+    offset, size = fields[count], fields["size of " + entry]
     n = struct.unpack_from("<Q", body, offset)[0]
-    return seal(body[:offset] + struct.pack("<Q", n - 1) + body[offset + 16:])
+    b = bytearray(body[:offset] + struct.pack("<Q", n - 1) + body[offset + 16:])
+    struct.pack_into("<Q", b, size, struct.unpack_from("<Q", body, size)[0] - 8)
+    return seal(bytes(b))
 
 
 crafted = {
@@ -223,7 +230,7 @@ crafted = {
     "2^40 cells in a refinement": put(fields["n_cells"], 2**40),
     "a cell id of 2^64 - 1 characters": put(cells[0][0], 2**64 - 1),
     "2^61 solution values": put(fields["n_solution"], 2**61),
-    "one solution value fewer": one_value_fewer("n_solution"),
+    "one solution value fewer": one_value_fewer("n_solution", "solution"),
     "2^62 segment values": put(fields["n_segments"], 2**62),
     "2^57 contact point states": put(fields["n_states"], 2**57),
     "a header of 2^62 characters": put(fields["header"], 2**62),
@@ -239,6 +246,10 @@ crafted = {
     "last normal force inf": put(fields["last_normal_force"], float("inf"), "<d"),
     "bytes added before the end marker": seal(body[:-len(MAGIC) - 8] + b"\0" * 8 + body[-len(MAGIC) - 8:]),
     "bytes added after the end marker": seal(body + b"\0" * 8),
+    "bytes added to the state 'time'": seal(body[:fields["size of time"]] + struct.pack("<Q", 16) +
+                                            body[fields["time"]:fields["time"] + 8] + b"\0" * 8 +
+                                            body[fields["time"] + 8:]),
+    "the state 'time' renamed": seal(body.replace(b"\x04\0\0\0\0\0\0\0time", b"\x04\0\0\0\0\0\0\0tame", 1)),
     "an empty file": b"",
     "zeros": b"\0" * len(data),
 }
@@ -328,7 +339,7 @@ b[len(data) // 2] ^= 0x10
 for what, damaged in (("rank 1 truncated", data[:len(data) // 2]),
                       ("rank 1 with a byte flipped", bytes(b)),
                       ("rank 1 with 2^61 solution values", put(fields["n_solution"], 2**61)),
-                      ("rank 1 with one solution value fewer", one_value_fewer("n_solution")),
+                      ("rank 1 with one solution value fewer", one_value_fewer("n_solution", "solution")),
                       ("rank 1 with 2^57 contact point states", put(fields["n_states"], 2**57))):
     two_bodies.resume(what, {1: damaged})
 check.finish()

@@ -201,24 +201,26 @@ namespace StabilizedLagrangian
     if (!resumed)
       output_results(0, 0.);
 
-    PathLog      path(time, work);
-    StepSnapshot saved;
+    PathLog path(time, work);
     while (steps.before_end(time))
       {
-        const double step_size = steps.next_step_size(time);
-        saved.save(*this);
-        StepStatistics stats;
+        const double             step_size  = steps.next_step_size(time);
+        const double             step_begin = time;
+        const RunState::Snapshot saved      = state_list.snapshot();
+        StepStatistics           stats;
         stats.step      = steps.step() + 1;
         stats.step_size = step_size;
         stats.cuts      = steps.consecutive_cuts();
         Timer step_clock;
-        time = saved.time + step_size;
-        partner->set_time(saved.time, time);
+        time = step_begin + step_size;
+        load_step_attempt(step_begin, time);
+        partner->set_time(step_begin, time);
         extrapolate_last_step(step_size);
         apply_dirichlet_values(time);
         if (!solve_load_step(stats) || !plausible_converged_state())
           {
-            saved.restore(*this);
+            saved.restore();
+            update_ghosts();
             // the same step again, with the friction threshold folded
             const bool fold = contact_start.fold_friction && !contact_start.friction_folded;
             contact_start   = ContactStart();
@@ -241,29 +243,6 @@ namespace StabilizedLagrangian
       }
     finish_load_path(steps, path);
     return true;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::StepSnapshot::save(const ContactProblem &problem)
-  {
-    solution       = problem.solution;
-    contact_states = problem.contact_states;
-    conditions     = problem.conditions->copy();
-    contact_faces  = problem.contact_faces;
-    time           = problem.time;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::StepSnapshot::restore(ContactProblem &problem) const
-  {
-    problem.solution       = solution;
-    problem.contact_states = contact_states;
-    problem.conditions->restore(*conditions);
-    problem.contact_faces = contact_faces;
-    problem.time          = time;
-    problem.update_ghosts();
   }
 
   template <int dim>
@@ -574,7 +553,7 @@ namespace StabilizedLagrangian
          << path_work.jacobians << ',' << last_step.estimated_error << ','
          << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
          << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max << ','
-         << (conditions->nodal() ? 1 : 0);
+         << (weighted_complementarity() ? 1 : 0);
     if (inf_sup_checked())
       file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     if (krylov_columns)
@@ -684,8 +663,6 @@ namespace StabilizedLagrangian
   template bool        ContactProblem<dim>::targets_met() const;                                   \
   template void ContactProblem<dim>::finish_targeted_cycles(unsigned int, const CycleTotals &);    \
   template bool ContactProblem<dim>::solve_load_path(bool);                                        \
-  template void ContactProblem<dim>::StepSnapshot::save(const ContactProblem<dim> &);              \
-  template void ContactProblem<dim>::StepSnapshot::restore(ContactProblem<dim> &) const;           \
   template void ContactProblem<dim>::start_load_path(LoadStepController &);                        \
   template void ContactProblem<dim>::print_path_banner() const;                                    \
   template bool ContactProblem<dim>::cut_load_step(LoadStepController &);                          \

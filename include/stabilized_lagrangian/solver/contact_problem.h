@@ -20,6 +20,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <boost/signals2/signal.hpp>
+
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
@@ -39,6 +41,7 @@
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
+#include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 
 #include <algorithm>
@@ -109,7 +112,9 @@ namespace StabilizedLagrangian
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, nested_loops.cc the loops of seed §2.2,
    * newton.cc the Newton iteration, refinement.cc adaptive
-   * refinement, checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test;
+   * refinement, run_state_list.cc the run's state (what a step cut restores
+   * and a checkpoint keeps), checkpoint.cc checkpoints, inf_sup_test.cc the
+   * inf-sup test;
    * output in source/postprocessing/output.cc.
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
@@ -130,6 +135,21 @@ namespace StabilizedLagrangian
      */
     bool
     run(const bool resume = false);
+
+    /**
+     * @brief The run's state, listed once (source/solver/run_state_list.cc
+     * lists the problem's own): what a step cut restores and a checkpoint
+     * keeps. An extension adds the state it keeps here, before run().
+     */
+    RunState &
+    run_state();
+
+    /**
+     * @brief Called at the start of every attempt of a load step, with the
+     * step's start and end time, once the state a step cut restores is saved:
+     * an extension advances the state it added to run_state() here.
+     */
+    boost::signals2::signal<void(double start, double end)> load_step_attempt;
 
     /** @brief Whether run() stopped at `Load stepping/Wall time limit` (not a failure). */
     bool
@@ -361,26 +381,6 @@ namespace StabilizedLagrangian
      */
     bool
     solve_load_path(const bool resumed = false);
-    /**
-     * What a load step changes and a step cut restores, saved before each
-     * attempt. The material history needs no copy: an attempt writes only its
-     * trial values, which become the committed ones when the step converges
-     * (Materials::QuadratureHistory::commit()).
-     */
-    struct StepSnapshot
-    {
-      TrilinosWrappers::MPI::Vector           solution;
-      std::vector<ContactPointState<dim>>     contact_states;
-      std::unique_ptr<ContactConditions<dim>> conditions;
-      std::vector<ContactFace>                contact_faces;
-      double                                  time = 0.;
-      /** Copy the state of @p problem. */
-      void
-      save(const ContactProblem &problem);
-      /** Put the saved state back into @p problem (collective: the ghosts are refreshed). */
-      void
-      restore(ContactProblem &problem) const;
-    };
     /** What the log and run_summary.csv gather along the load path. */
     struct PathLog
     {
@@ -722,6 +722,37 @@ namespace StabilizedLagrangian
      */
     void
     restore_segments(const std::vector<double> &segments);
+    /** The size of refinement_cycles.csv (rank 0; 0 elsewhere). */
+    unsigned long
+    cycles_log_bytes() const;
+    /** The contact faces' segment rules, as restore_segments() reads them. */
+    std::vector<double>
+    face_segments_list() const;
+    /** The accumulated slip per node of Γc: key, step, then the sums; and back. */
+    std::vector<double>
+    accumulated_slip_list() const;
+    void
+    restore_accumulated_slip(const std::vector<double> &slips);
+
+    // --- run_state_list.cc: the run's state, listed once ---
+    /** Add the problem's own state to the list, in the order it is read back. */
+    void
+    register_run_state();
+    /** The time, the load stepping, the work counters, the last force and step size. */
+    void
+    register_load_stepping_state();
+    /** The solution, the predictor's last increment, the material history. */
+    void
+    register_field_state();
+    /** The contact faces' segments, the points' and the nodes' states, the slip. */
+    void
+    register_contact_state();
+    /** What the output files continue from: the .pvd records, the CSV files' sizes. */
+    void
+    register_output_state();
+    /** Whether contact point states read from a checkpoint fit the scene (InputError). */
+    void
+    check_contact_states(StateReader &in, const std::vector<ContactPointState<dim>> &states) const;
     /** Refine the mesh again as refinement_history lists it, cell by cell. */
     void
     replay_refinements();
@@ -1792,5 +1823,7 @@ namespace StabilizedLagrangian
     std::vector<double> inf_sup_betas;
     /** per adaptive refinement cycle, the cells this rank flagged for refinement */
     std::vector<std::vector<CellId>> refinement_history;
+    /** the run's state: what a step cut restores and a checkpoint keeps */
+    RunState state_list;
   };
 } // namespace StabilizedLagrangian

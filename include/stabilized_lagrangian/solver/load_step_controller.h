@@ -10,7 +10,7 @@ namespace StabilizedLagrangian
    * towards the nominal one.
    *
    * The controller works on a State it does not own: the part of the load
-   * stepping a checkpoint keeps (source/solver/checkpoint.cc), while the
+   * stepping a checkpoint keeps (source/solver/run_state_list.cc), while the
    * nominal step and the end come from the parameters of the run, which a
    * resume may change (`End time`).
    */

@@ -1,0 +1,360 @@
+#include <deal.II/base/mpi.h>
+
+#include <stabilized_lagrangian/solver/contact_problem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace StabilizedLagrangian
+{
+  // The run's state, listed once (RunState): what a step cut restores and a
+  // checkpoint keeps. Each entry checks what it reads from a checkpoint, which
+  // is untrusted input (source/solver/checkpoint.cc); the mesh the state lives
+  // on (its refinements) is the checkpoint's own header.
+
+  namespace
+  {
+    using Scope = RunState::Scope;
+
+    bool
+    all_finite(const std::vector<double> &values)
+    {
+      return std::all_of(
+          values.begin(), values.end(), [](const double x) { return std::isfinite(x); });
+    }
+
+    /** Whether the entries of the point or tensor @p t are finite (and not beyond 1e150). */
+    template <typename T>
+    bool
+    finite_tensor(const T &t)
+    {
+      return std::isfinite(t.norm_square());
+    }
+
+    bool
+    finite_work(const WorkCounters &w)
+    {
+      return std::isfinite(w.amg_setup_seconds + w.schur_seconds + w.krylov_seconds +
+                           w.schur_solve_seconds);
+    }
+
+    /** The flags, indices and geometry of the contact points' states. */
+    template <int dim>
+    bool
+    valid_states(const std::vector<ContactPointState<dim>> &states)
+    {
+      return std::all_of(states.begin(), states.end(), [](const ContactPointState<dim> &state) {
+        // (a bool is one byte, 0 or 1; any other is undefined behaviour once read as bool)
+        unsigned char in_contact = 0;
+        std::memcpy(&in_contact, &state.in_contact, 1);
+        const auto &pairing = state.pairing;
+        return in_contact <= 1 && pairing.master_face >= -1 &&
+               std::isfinite(state.friction_threshold) && finite_tensor(pairing.master_point) &&
+               finite_tensor(pairing.normal) && finite_tensor(pairing.master_reference_point);
+      });
+    }
+
+    /** The accumulated slip: whole entries, keys and steps in their integer ranges. */
+    template <int dim>
+    bool
+    valid_slips(const std::vector<double> &slips)
+    {
+      const unsigned int entry = 3 * dim + 3;
+      if (slips.size() % entry != 0 || !all_finite(slips))
+        return false;
+      for (std::size_t i = 0; i < slips.size(); i += entry)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            if (std::abs(slips[i + d]) >= 9e18) // (within std::int64_t)
+              return false;
+          if (slips[i + dim] < 0. || slips[i + dim] > std::numeric_limits<unsigned int>::max())
+            return false;
+        }
+      return true;
+    }
+
+    /** A .pvd record as write_vtu_with_pvtu_record() names it: solution_<step>.pvtu. */
+    bool
+    is_solution_record(const std::string &name)
+    {
+      const std::string stem = "solution_", extension = ".pvtu";
+      return name.size() > stem.size() + extension.size() && name.rfind(stem, 0) == 0 &&
+             name.compare(name.size() - extension.size(), extension.size(), extension) == 0 &&
+             is_decimal_number(
+                 name.substr(stem.size(), name.size() - stem.size() - extension.size()), 9);
+    }
+
+    /**
+     * A list of @p expected values (the owned entries of a distributed vector,
+     * the owned nodes', the quadrature points'), all finite.
+     */
+    std::vector<double>
+    read_values(StateReader &in, const std::size_t expected, const std::string &what)
+    {
+      std::vector<double> values;
+      in.get(values, what);
+      if (values.size() != expected)
+        in.damaged("it has " + std::to_string(values.size()) + " " + what + ", the rebuilt mesh " +
+                   std::to_string(expected));
+      if (!all_finite(values))
+        in.damaged("its " + what + " are not all finite");
+      return values;
+    }
+
+    /** The entries @p owned of @p vector, in the order of the index set. */
+    std::vector<double>
+    owned_values(const TrilinosWrappers::MPI::Vector &vector, const IndexSet &owned)
+    {
+      std::vector<double> values;
+      for (const auto index : owned)
+        values.push_back(vector(index));
+      return values;
+    }
+
+    /** Put @p values (owned_values()) into @p vector (collective). */
+    void
+    set_owned_values(TrilinosWrappers::MPI::Vector &vector,
+                     const IndexSet                &owned,
+                     const std::vector<double>     &values)
+    {
+      unsigned int k = 0;
+      for (const auto index : owned)
+        vector(index) = values[k++];
+      vector.compress(VectorOperation::insert);
+    }
+  } // namespace
+
+  template <int dim>
+  RunState &
+  ContactProblem<dim>::run_state()
+  {
+    return state_list;
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::register_run_state()
+  {
+    register_load_stepping_state();
+    register_field_state();
+    register_contact_state();
+    register_output_state();
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::register_load_stepping_state()
+  {
+    state_list.add_value<double>("time", time, Scope::step_cut_and_checkpoint, [](const double t) {
+      return std::isfinite(t) && t >= 0.;
+    });
+    // the load stepping changes only when a step is accepted or cut
+    state_list.add_value<LoadStepController::State>(
+        "load stepping", controller, Scope::checkpoint_only, [](const auto &c) {
+          return std::isfinite(c.step_size) && c.step_size > 0.;
+        });
+    state_list.add_value<WorkCounters>("work", work, Scope::checkpoint_only, finite_work);
+    state_list.add_value<WorkCounters>(
+        "work before the load path", path_start_work, Scope::checkpoint_only, finite_work);
+    state_list.add_value<double>("last normal force",
+                                 last_normal_force,
+                                 Scope::checkpoint_only,
+                                 [](const double f) { return std::isfinite(f); });
+    state_list.add_value<double>("last step size",
+                                 last_step_size,
+                                 Scope::checkpoint_only,
+                                 [](const double h) { return std::isfinite(h) && h >= 0.; });
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::register_field_state()
+  {
+    // the solution's owned entries; its ghosts follow
+    state_list.add(
+        "solution",
+        Scope::step_cut_and_checkpoint,
+        [this](StateWriter &out) { out.put(owned_values(solution, locally_owned)); },
+        [this](StateReader &in) -> std::function<void()> {
+          auto values = read_values(in, locally_owned.n_elements(), "solution values");
+          return [this, values]() {
+            set_owned_values(solution, locally_owned, values);
+            update_ghosts();
+            step_start = ghosted_solution;
+          };
+        },
+        RunState::copy_of(solution));
+    // the predictor's slope (`Predictor = extrapolation`), set when a step is accepted
+    state_list.add(
+        "last increment",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) { out.put(owned_values(last_increment, locally_owned)); },
+        [this](StateReader &in) -> std::function<void()> {
+          auto values = read_values(in, locally_owned.n_elements(), "increment values");
+          return [this, values]() { set_owned_values(last_increment, locally_owned, values); };
+        });
+    // an attempt writes only trial values, committed when the step converges
+    // (Materials::QuadratureHistory::commit())
+    state_list.add(
+        "material history",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) { out.put(material_history.committed_data()); },
+        [this](StateReader &in) -> std::function<void()> {
+          auto values =
+              read_values(in, material_history.committed_data().size(), "material history values");
+          return [this, values]() { material_history.restore(values); };
+        });
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::register_contact_state()
+  {
+    // the segments set the contact points' layout: read before the points
+    state_list.add(
+        "contact faces",
+        Scope::step_cut_and_checkpoint,
+        [this](StateWriter &out) { out.put(face_segments_list()); },
+        [this](StateReader &in) -> std::function<void()> {
+          std::vector<double> segments;
+          in.get(segments, "segment values");
+          if (!all_finite(segments))
+            in.damaged("its segments are not all finite");
+          try
+            {
+              restore_segments(segments);
+            }
+          catch (const InputError &e)
+            {
+              in.damaged(e.what());
+            }
+          return {};
+        },
+        RunState::copy_of(contact_faces));
+    state_list.add(
+        "contact points",
+        Scope::step_cut_and_checkpoint,
+        [this](StateWriter &out) { out.put(contact_states); },
+        [this](StateReader &in) -> std::function<void()> {
+          std::vector<ContactPointState<dim>> states;
+          in.get(states, "contact points");
+          check_contact_states(in, states);
+          return [this, states]() { contact_states = states; };
+        },
+        RunState::copy_of(contact_states));
+    state_list.add(
+        "contact conditions",
+        Scope::step_cut_and_checkpoint,
+        [this](StateWriter &out) { out.put(conditions->owned_states()); },
+        [this](StateReader &in) -> std::function<void()> {
+          auto values = read_values(in, conditions->n_state_values(), "nodal state values");
+          return [this, values]() { conditions->restore_states(values); };
+        },
+        [this]() -> std::function<void()> {
+          std::shared_ptr<const ContactConditions<dim>> copy = conditions->copy();
+          return [this, copy]() { conditions->restore(*copy); };
+        });
+    state_list.add(
+        "active set",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) { out.put(active_set); },
+        [this](StateReader &in) -> std::function<void()> {
+          std::vector<Point<dim>> points;
+          in.get(points, "active set points");
+          if (!std::all_of(
+                  points.begin(), points.end(), [](const auto &p) { return finite_tensor(p); }))
+            in.damaged("its active set holds points that are not finite");
+          return [this, points]() { active_set = points; };
+        });
+    state_list.add(
+        "accumulated slip",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) { out.put(accumulated_slip_list()); },
+        [this](StateReader &in) -> std::function<void()> {
+          std::vector<double> slips;
+          in.get(slips, "accumulated slip values");
+          if (!valid_slips<dim>(slips))
+            in.damaged("its accumulated slip is not a list of whole, finite entries");
+          return [this, slips]() { restore_accumulated_slip(slips); };
+        });
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::check_contact_states(StateReader                               &in,
+                                            const std::vector<ContactPointState<dim>> &states) const
+  {
+    if (states.size() != contact_states.size())
+      in.damaged("it has " + std::to_string(states.size()) + " contact points, the rebuilt mesh " +
+                 std::to_string(contact_states.size()));
+    if (!valid_states(states))
+      in.damaged("its contact points' states hold invalid values");
+    const bool rigid_partner = contact_parameters.master_ids.empty();
+    for (const auto &point : states)
+      if (point.zone > contact_zones.size() || (rigid_partner && point.pairing.master_face >= 0))
+        in.damaged("a contact point names a contact zone or master face the scene does not have");
+  }
+
+  template <int dim>
+  void
+  ContactProblem<dim>::register_output_state()
+  {
+    state_list.add(
+        "pvd records",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) {
+          out.put(static_cast<std::uint64_t>(pvd_records.size()));
+          for (const auto &[t, file] : pvd_records)
+            {
+              out.put(t);
+              out.put(file);
+            }
+        },
+        [this](StateReader &in) -> std::function<void()> {
+          // (a record takes at least its time and its name's length)
+          std::vector<std::pair<double, std::string>> records(
+              in.count(".pvd records", 2 * sizeof(std::uint64_t)));
+          for (auto &[t, record] : records)
+            {
+              in.get(t);
+              in.get(record, 64, "a .pvd record");
+              if (!std::isfinite(t) || !is_solution_record(record))
+                in.damaged("a .pvd record is not a time and a file solution_<step>.pvtu");
+            }
+          return [this, records]() { pvd_records = records; };
+        });
+    // the output files continue where the checkpoint was taken (after the .pvd records)
+    state_list.add(
+        "output files",
+        Scope::checkpoint_only,
+        [this](StateWriter &out) {
+          out.put(statistics.state());
+          out.put(cycles_log_bytes());
+        },
+        [this](StateReader &in) -> std::function<void()> {
+          StatisticsWriter::State rows;
+          unsigned long           cycles_bytes = 0;
+          in.get(rows);
+          in.get(cycles_bytes);
+          return [this, rows, cycles_bytes]() { continue_outputs(cycles_bytes, rows); };
+        });
+  }
+
+  // Explicit instantiation of the members defined in this file (the class
+  // itself is instantiated once, in contact_problem.cc).
+#define SL_INSTANTIATE(dim)                                               \
+  template RunState &ContactProblem<dim>::run_state();                    \
+  template void      ContactProblem<dim>::register_run_state();           \
+  template void      ContactProblem<dim>::register_load_stepping_state(); \
+  template void      ContactProblem<dim>::register_field_state();         \
+  template void      ContactProblem<dim>::register_contact_state();       \
+  template void      ContactProblem<dim>::register_output_state();        \
+  template void      ContactProblem<dim>::check_contact_states(           \
+      StateReader &, const std::vector<ContactPointState<dim>> &) const;
+
+  SL_INSTANTIATE(2)
+  SL_INSTANTIATE(3)
+#undef SL_INSTANTIATE
+} // namespace StabilizedLagrangian
