@@ -64,7 +64,7 @@ namespace StabilizedLagrangian
       bool replicated_search = false;
       /** `Search distance` (mm); 0: automatic */
       double      search_distance = 0.;
-      double      r_n             = 0.; ///< the value used (set by the run when automatic)
+      double      r_n             = 0.; ///< as given; 0 with `automatic` (ChosenParameters::r_n)
       double      r_t             = 0.;
       bool        r_n_automatic   = false;
       bool        r_t_automatic   = false;
@@ -73,7 +73,7 @@ namespace StabilizedLagrangian
       std::string fe_pair;
       bool        check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
       ContactQuadrature quadrature = ContactQuadrature::gauss_lobatto;
-      /** the conditions used (chosen by the run with `automatic`) */
+      /** as given; pointwise with `automatic` (ChosenParameters::complementarity) */
       Complementarity complementarity = Complementarity::pointwise;
       /** `Complementarity = automatic`: weighted for two bodies
        * (ContactProblem::choose_complementarity) */

@@ -817,7 +817,7 @@ namespace StabilizedLagrangian
       fits(saved.history.size(),
            material_history.committed_data().size(),
            "material history values");
-      const bool rigid_partner = contact_parameters.master_ids.empty();
+      const bool rigid_partner = chosen.master_boundaries.empty();
       for (const auto &state : saved.states)
         if (state.zone > contact_zones.size() || (rigid_partner && state.pairing.master_face >= 0))
           throw_damaged(path,
@@ -894,11 +894,10 @@ namespace StabilizedLagrangian
     const bool         root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     if (root && cycles_bytes > 0)
       SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
-    output_parameters.directory = cycle_directory(cycle);
-    statistics.resume(
-        output_parameters.directory, dim, root, statistics_supports(), statistics_state);
+    output_directory = cycle_directory(cycle);
+    statistics.resume(output_directory, dim, root, statistics_supports(), statistics_state);
     write_pvd();
-    output_parameters.directory = base;
+    output_directory = base;
   }
 
   template <int dim>

@@ -108,8 +108,8 @@ namespace StabilizedLagrangian
     else if (local_refinement_3d)
       choice = {Conditions::pointwise,
                 "adaptive refinement of a 3D contact surface makes hanging nodes"};
-    contact_parameters.complementarity = choice.first;
-    complementarity_choice             = "Complementarity = automatic: " +
+    chosen.complementarity = choice.first;
+    complementarity_choice = "Complementarity = automatic: " +
                              std::string(weighted_complementarity() ? "weighted" : "pointwise") +
                              " (" + choice.second + ")";
   }
@@ -131,7 +131,7 @@ namespace StabilizedLagrangian
     if (constrained == 1 && contact_parameters.complementarity_automatic &&
         !fe_pair->dual_multiplier())
       {
-        contact_parameters.complementarity = Parameters::Complementarity::pointwise;
+        chosen.complementarity = Parameters::Complementarity::pointwise;
         complementarity_choice = "Complementarity = automatic: pointwise (constrained multiplier "
                                  "nodes on the contact surface: hanging nodes or a coarser "
                                  "multiplier mesh)";
@@ -259,8 +259,8 @@ namespace StabilizedLagrangian
           continue;
         // a gap within round-off of zero touches (status())
         const double gap        = nodal.integrals(j) / nodal.weights(j);
-        const bool   in_contact = Contact::is_in_contact(Contact::augmented_pressure(
-            ghosted_solution(j), status_gap(gap), contact_parameters.r_n));
+        const bool   in_contact = Contact::is_in_contact(
+            Contact::augmented_pressure(ghosted_solution(j), status_gap(gap), chosen.r_n));
         changes += in_contact != (nodal.status(j) > 0.5);
         status(j) = in_contact ? 1. : 0.;
       }
@@ -326,8 +326,8 @@ namespace StabilizedLagrangian
         nodal.status(node) > 0.5,
         nodal.thresholds(node),
         friction_law->has_friction(),
-        contact_parameters.r_n,
-        contact_parameters.r_t,
+        chosen.r_n,
+        chosen.r_t,
         loops.linearised(Loop::friction)
             ? friction_law->threshold_derivative(threshold_pressure(lambda))
             : 0.);

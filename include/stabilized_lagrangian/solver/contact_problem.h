@@ -33,6 +33,7 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
@@ -442,7 +443,7 @@ namespace StabilizedLagrangian
     bool
     weighted_complementarity() const
     {
-      return contact_parameters.complementarity == Parameters::Complementarity::weighted;
+      return chosen.weighted_complementarity();
     }
     /**
      * @brief `Complementarity = automatic`: weighted for two deformable bodies
@@ -1159,7 +1160,7 @@ namespace StabilizedLagrangian
     is_contact_face(const CellIterator &cell, const unsigned int f) const
     {
       return cell->face(f)->at_boundary() &&
-             contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
+             chosen.contact_boundaries.count(cell->face(f)->boundary_id()) > 0;
     }
     /** Whether face @p f of @p cell lies on Γc or on the master surface of a second body. */
     template <typename CellIterator>
@@ -1168,7 +1169,7 @@ namespace StabilizedLagrangian
     {
       return is_contact_face(cell, f) ||
              (cell->face(f)->at_boundary() &&
-              contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0);
+              chosen.master_boundaries.count(cell->face(f)->boundary_id()) > 0);
     }
     /**
      * Call f(dof, i) for each multiplier DoF on a contact face of the
@@ -1723,26 +1724,32 @@ namespace StabilizedLagrangian
     ConditionalOStream pcout;
     TimerOutput        timer;
 
+    // the parsed input, in the order it is read (its first error is the one reported)
+    std::unique_ptr<Geometry::Interface<dim>> geometry;
     /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
-    bool                                axisymmetric = false;
-    Parameters::Contact                 contact_parameters;
-    Parameters::BoundaryConditions<dim> boundary_conditions;
-    Parameters::LoadStepping            load_stepping;
-    Parameters::NonlinearSolver         solver_parameters;
+    const bool                axisymmetric;
+    const Parameters::Contact contact_parameters;
+    /** the boundaries given by name are resolved by the run (resolve_boundaries) */
+    Parameters::BoundaryConditions<dim>  boundary_conditions;
+    const Parameters::LoadStepping       load_stepping;
+    const Parameters::NonlinearSolver    solver_parameters;
+    const Parameters::LinearSolver       linear_solver_parameters;
+    const Parameters::Output             output_parameters;
+    const Parameters::AdaptiveRefinement adaptive_refinement;
+    /** the values chosen from the input, the mesh and the materials (reported, not input) */
+    ChosenParameters chosen;
+    /** the current cycle's output: `Output/Output directory`, or its cycle's subdirectory */
+    std::string output_directory;
     /** the process's memory before the mesh existed (check_memory_for_growth) */
     Utilities::System::MemoryStats memory_at_start;
     /** wall time since the problem was built, for `Load stepping/Wall time limit` */
     Timer run_clock;
     bool  wall_time_limit_reached = false;
     /** why the run must stop rather than cut the load step (empty: it may cut) */
-    std::string                    unrecoverable_failure;
-    Parameters::LinearSolver       linear_solver_parameters;
-    Parameters::AdaptiveRefinement adaptive_refinement;
+    std::string unrecoverable_failure;
     /** `Stopping = adaptive`: the discretisation error estimated at the last check of any loop */
-    EnergyEstimate     last_estimate;
-    Parameters::Output output_parameters;
+    EnergyEstimate last_estimate;
 
-    std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
     /** `Obstacle/Motion`: the rigid obstacle's translation d(t) */
     std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_translation;
