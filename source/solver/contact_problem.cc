@@ -94,7 +94,7 @@ namespace StabilizedLagrangian
     prm.leave_subsection();
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
-    friction_law = FrictionLaws::create(prm);
+    friction_law = FrictionLaws::create(prm, "Contact");
     prm.leave_subsection();
     {
       // the zones declared: those of the parsed text (and the template's)
@@ -106,7 +106,8 @@ namespace StabilizedLagrangian
           prm.enter_subsection("Zone " + name);
           const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
           if (!boundaries.empty())
-            contact_zones.push_back(ContactZone{name, boundaries, FrictionLaws::create(prm)});
+            contact_zones.push_back(
+                ContactZone{name, boundaries, FrictionLaws::create(prm, "Contact/Zone " + name)});
           prm.leave_subsection();
           prm.leave_subsection();
         }
