@@ -17,12 +17,12 @@ namespace StabilizedLagrangian
   namespace
   {
     /** The struct of a parameter subsection, parsed once. */
-    template <typename Section>
+    template <typename Section, typename... Arguments>
     Section
-    parsed(ParameterHandler &prm)
+    parsed(ParameterHandler &prm, const Arguments &...arguments)
     {
       Section section;
-      section.parse_parameters(prm);
+      section.parse_parameters(prm, arguments...);
       return section;
     }
 
@@ -42,14 +42,16 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
-  ContactProblem<dim>::ContactProblem(ParameterHandler &prm, const bool verbose)
+  ContactProblem<dim>::ContactProblem(ParameterHandler                    &prm,
+                                      const Parameters::ConditionSections &sections,
+                                      const bool                           verbose)
       : mpi_communicator(MPI_COMM_WORLD)
       , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
       , geometry(Geometry::create<dim>(prm))
       , axisymmetric(parsed_axisymmetric<dim>(prm))
       , contact_parameters(parsed<Parameters::Contact>(prm))
-      , boundary_conditions(parsed<Parameters::BoundaryConditions<dim>>(prm))
+      , boundary_conditions(parsed<Parameters::BoundaryConditions<dim>>(prm, sections))
       , load_stepping(parsed<Parameters::LoadStepping>(prm))
       , solver_parameters(parsed<Parameters::NonlinearSolver>(prm))
       , linear_solver_parameters(parsed<Parameters::LinearSolver>(prm))
@@ -96,22 +98,17 @@ namespace StabilizedLagrangian
     prm.enter_subsection("Contact");
     friction_law = FrictionLaws::create(prm, "Contact");
     prm.leave_subsection();
-    {
-      // the zones declared: those of the parsed text (and the template's)
-      std::ostringstream declared;
-      prm.print_parameters(declared, ParameterHandler::PRM);
-      for (const auto &name : Parameters::condition_sections(declared.str()).zones)
-        {
-          prm.enter_subsection("Contact");
-          prm.enter_subsection("Zone " + name);
-          const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
-          if (!boundaries.empty())
-            contact_zones.push_back(
-                ContactZone{name, boundaries, FrictionLaws::create(prm, "Contact/Zone " + name)});
-          prm.leave_subsection();
-          prm.leave_subsection();
-        }
-    }
+    for (const auto &name : sections.zones)
+      {
+        prm.enter_subsection("Contact");
+        prm.enter_subsection("Zone " + name);
+        const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
+        if (!boundaries.empty())
+          contact_zones.push_back(
+              ContactZone{name, boundaries, FrictionLaws::create(prm, "Contact/Zone " + name)});
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
     choose_complementarity();
     if (!contact_zones.empty() && weighted_complementarity())

@@ -145,9 +145,12 @@ namespace StabilizedLagrangian
      * @brief Build the problem from parsed parameters (declared by
      * Parameters::declare_all<dim>).
      * @param prm the parsed parameters
+     * @param sections the condition subsections @p prm holds (Parameters::parse())
      * @param verbose print the progress to screen (rank 0)
      */
-    ContactProblem(ParameterHandler &prm, const bool verbose = true);
+    ContactProblem(ParameterHandler                    &prm,
+                   const Parameters::ConditionSections &sections,
+                   const bool                           verbose = true);
 
     /**
      * @brief Solve every load step (load_path.cc); returns false if a step could not be solved.
