@@ -300,6 +300,12 @@ for name, model, entry, value in (
     text_case(name, scene(settings=[("Material 2/Bodies", "0"), ("Material 2/Model", model),
                                     (f"Material 2/{model}/{entry}", value)]),
               f"Material 2/{model}/{entry}")
+# conditions of one kind are read in ParameterHandler's order of subsections (a name's characters
+# outside [A-Za-z0-9] sort as `_` and two hex digits: `aZ` before `a 1` and `a-b`), the order
+# in which they have always been applied: the first one refused is `aZ`
+text_case("point loads in ParameterHandler's order", scene() + "".join(
+    sltest.nested_set(f"Boundary conditions/Point load {name}/Point", "x") for name in ("a 1", "aZ", "a-b")),
+          "Point load aZ/Point = 'x'")
 # combinations the dual multiplier basis cannot take
 DUAL = ("Contact/Finite element pair", "Q1/P1 dual")
 text_case("dual pair, pointwise conditions",
