@@ -451,8 +451,9 @@ namespace StabilizedLagrangian
     /**
      * @brief `Complementarity = automatic`: weighted for two deformable bodies
      * and dual pairs, pointwise against a rigid obstacle and where weighted does
-     * not apply (doc/formulation.md, "Which conditions by default"). The
-     * constrained multiplier nodes are seen by setup_nodal_conditions().
+     * not apply (doc/formulation.md, "Which conditions by default"), into
+     * chosen.complementarity. The constrained multiplier nodes are seen by
+     * setup_nodal_conditions().
      */
     void
     choose_complementarity();
@@ -1053,7 +1054,7 @@ namespace StabilizedLagrangian
     setup_after_refinement();
 
     // --- setup_checks.cc: checks of the scene before the run: supports, warnings, r_n and r_t ---
-    /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
+    /** chosen.r_n, chosen.r_t: the prm's, or the automatic ones on this mesh (reported). */
     void
     choose_augmentation_parameters();
     /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
