@@ -117,7 +117,7 @@ Output goes to the directory of the entry Output/Output directory.
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse<dim>(prm, text, is_file);
+    const auto sections = Parameters::parse<dim>(prm, text, is_file);
     prm.enter_subsection("Linear solver");
     if (!threads.empty())
       prm.set("Threads per rank", threads);
@@ -128,7 +128,7 @@ Output goes to the directory of the entry Output/Output directory.
     prm.leave_subsection();
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       std::cout << note;
-    ContactProblem<dim> problem(prm);
+    ContactProblem<dim> problem(prm, sections);
     if (inf_sup_meshes > 0)
       {
         problem.run_inf_sup_test(inf_sup_meshes);

@@ -548,7 +548,8 @@ namespace StabilizedLagrangian
 
     template <int dim>
     void
-    BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
+    BoundaryConditions<dim>::parse_parameters(ParameterHandler        &prm,
+                                              const ConditionSections &sections)
     {
       dirichlet.clear();
       point_dirichlet.clear();
@@ -560,10 +561,6 @@ namespace StabilizedLagrangian
         return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
       };
 
-      // the conditions declared: those of the parsed text (and the template's)
-      std::ostringstream declared;
-      prm.print_parameters(declared, ParameterHandler::PRM);
-      const ConditionSections sections = condition_sections(declared.str());
       // the condition's boundary, or nothing where it is unused (-1)
       const auto boundary = [&prm](const std::string &section)
           -> std::optional<std::pair<types::boundary_id, std::string>> {
@@ -1159,6 +1156,57 @@ namespace StabilizedLagrangian
       prm.leave_subsection();
     }
 
+    namespace
+    {
+      /** The condition subsections declare_all() declares as the template: `1` of each kind. */
+      ConditionSections
+      template_sections()
+      {
+        return ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}, {"1"}};
+      }
+
+      /**
+       * The key ParameterHandler stores subsection @p name under: each
+       * character outside [A-Za-z0-9] written as `_` and two hex digits. Its
+       * subsections are in the order of their keys, the order in which the
+       * conditions have always been applied and numbered.
+       */
+      std::string
+      subsection_key(const std::string &name)
+      {
+        static const char *hex = "0123456789abcdef";
+        std::string        key;
+        for (const unsigned char c : name)
+          if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'))
+            key += static_cast<char>(c);
+          else
+            key += std::string{'_', hex[c / 16], hex[c % 16]};
+        return key;
+      }
+
+      /** The sections of @p text and the template's, each once, in ParameterHandler's order. */
+      ConditionSections
+      with_template(const ConditionSections &text)
+      {
+        ConditionSections result = template_sections();
+        for (auto [names, more] : {std::pair{&result.dirichlet, &text.dirichlet},
+                                   {&result.neumann, &text.neumann},
+                                   {&result.spring, &text.spring},
+                                   {&result.plate, &text.plate},
+                                   {&result.point_load, &text.point_load},
+                                   {&result.zones, &text.zones}})
+          {
+            for (const auto &name : *more)
+              if (std::find(names->begin(), names->end(), name) == names->end())
+                names->push_back(name);
+            std::sort(names->begin(), names->end(), [](const auto &a, const auto &b) {
+              return subsection_key(a) < subsection_key(b);
+            });
+          }
+        return result;
+      }
+    } // namespace
+
     template <int dim>
     void
     declare_all(ParameterHandler &prm)
@@ -1195,9 +1243,8 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::pattern(),
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
-      BoundaryConditions<dim>::declare_parameters(
-          prm, ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}, {"1"}});
-      declare_contact_zones(prm, {"1"});
+      BoundaryConditions<dim>::declare_parameters(prm, template_sections());
+      declare_contact_zones(prm, template_sections().zones);
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
@@ -1363,7 +1410,7 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    void
+    ConditionSections
     parse(ParameterHandler &prm, const std::string &text, const bool is_file)
     {
       if (is_file)
@@ -1386,6 +1433,7 @@ namespace StabilizedLagrangian
                            (is_file ? "'" + text + "'" : std::string("(built-in)")) + ":\n" +
                            locate(message.str(), content));
         }
+      return with_template(sections);
     }
 
     unsigned int
@@ -1419,9 +1467,9 @@ namespace StabilizedLagrangian
     template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;
     template struct BoundaryConditions<3>;
-    template void
+    template ConditionSections
     parse<2>(ParameterHandler &, const std::string &, const bool);
-    template void
+    template ConditionSections
     parse<3>(ParameterHandler &, const std::string &, const bool);
     template void
     declare_all<2>(ParameterHandler &);

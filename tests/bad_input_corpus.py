@@ -282,6 +282,30 @@ for name, path, value, expect in (
         ("unknown material", "Material/Model", "steel", "Model"),
         ("unknown pair", "Contact/Finite element pair", "Q7/P9", "Finite element pair")):
     text_case(name, scene(settings=[(path, value)]), expect)
+# a plug-in chosen in more than one place names the subsection the value was written in
+ZONE_LEFT = [("Contact/Zone left/Boundary ids", "2"), ("Contact/Complementarity", "pointwise")]
+for name, settings, expect in (
+        ("mu = -0.1 in a contact zone",
+         [("Contact/Zone left/Friction law/Coulomb/Friction coefficient", "-0.1")],
+         "Contact/Zone left/Friction law/Coulomb/Friction coefficient must be >= 0"),
+        ("s = -1 in a contact zone",
+         [("Contact/Zone left/Friction law/Model", "Tresca"),
+          ("Contact/Zone left/Friction law/Tresca/Threshold", "-1")],
+         "Contact/Zone left/Friction law/Tresca/Threshold must be >= 0")):
+    text_case(name, scene(settings=ZONE_LEFT + settings), expect)
+for name, model, entry, value in (
+        ("E = -1 in a material slot", "linear elastic", "Young's modulus", "-1"),
+        ("C10 = 0 in a material slot", "neo-Hookean", "C10", "0"),
+        ("a bad hardening curve in a material slot", "J2 plasticity", "Hardening curve", "0:250, 0.1:200")):
+    text_case(name, scene(settings=[("Material 2/Bodies", "0"), ("Material 2/Model", model),
+                                    (f"Material 2/{model}/{entry}", value)]),
+              f"Material 2/{model}/{entry}")
+# conditions of one kind are read in ParameterHandler's order of subsections (a name's characters
+# outside [A-Za-z0-9] sort as `_` and two hex digits: `aZ` before `a 1` and `a-b`), the order
+# in which they have always been applied: the first one refused is `aZ`
+text_case("point loads in ParameterHandler's order", scene() + "".join(
+    sltest.nested_set(f"Boundary conditions/Point load {name}/Point", "x") for name in ("a 1", "aZ", "a-b")),
+          "Point load aZ/Point = 'x'")
 # combinations the dual multiplier basis cannot take
 DUAL = ("Contact/Finite element pair", "Q1/P1 dual")
 text_case("dual pair, pointwise conditions",

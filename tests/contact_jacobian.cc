@@ -256,11 +256,11 @@ end
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse<dim>(prm,
-                           scene<dim>(quadrature, mu) +
-                               (generalized ? generalized_newton<dim>() : "") + material,
-                           false);
-    ContactProblem<dim> problem(prm, false);
+    const auto sections = Parameters::parse<dim>(
+        prm,
+        scene<dim>(quadrature, mu) + (generalized ? generalized_newton<dim>() : "") + material,
+        false);
+    ContactProblem<dim> problem(prm, sections, false);
     problem.setup();
 
     const auto multiplier_rows = problem.locally_owned_multiplier_components();

@@ -89,8 +89,8 @@ end
   {
     ParameterHandler prm;
     Parameters::declare_all<dim>(prm);
-    Parameters::parse<dim>(prm, scene<dim>(pair), false);
-    ContactProblem<dim> problem(prm, false);
+    const auto          sections = Parameters::parse<dim>(prm, scene<dim>(pair), false);
+    ContactProblem<dim> problem(prm, sections, false);
     problem.setup();
     const auto                                mass = problem.multiplier_mass();
     std::map<types::global_dof_index, double> diagonal, sums;

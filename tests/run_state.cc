@@ -86,8 +86,8 @@ end
   {
     ParameterHandler prm;
     Parameters::declare_all<2>(prm);
-    Parameters::parse<2>(prm, scene(wall_time_limit), false);
-    ContactProblem<2> problem(prm, false);
+    const auto        sections = Parameters::parse<2>(prm, scene(wall_time_limit), false);
+    ContactProblem<2> problem(prm, sections, false);
     problem.run_state().add(
         "attempt counter",
         RunState::Scope::step_cut_and_checkpoint,

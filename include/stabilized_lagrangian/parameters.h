@@ -64,7 +64,7 @@ namespace StabilizedLagrangian
       bool replicated_search = false;
       /** `Search distance` (mm); 0: automatic */
       double      search_distance = 0.;
-      double      r_n             = 0.; ///< the value used (set by the run when automatic)
+      double      r_n             = 0.; ///< as given; 0 with `automatic` (ChosenParameters::r_n)
       double      r_t             = 0.;
       bool        r_n_automatic   = false;
       bool        r_t_automatic   = false;
@@ -73,7 +73,7 @@ namespace StabilizedLagrangian
       std::string fe_pair;
       bool        check_inf_sup = false; ///< β_h of the pair before each cycle (`Check inf-sup`)
       ContactQuadrature quadrature = ContactQuadrature::gauss_lobatto;
-      /** the conditions used (chosen by the run with `automatic`) */
+      /** as given; pointwise with `automatic` (ChosenParameters::complementarity) */
       Complementarity complementarity = Complementarity::pointwise;
       /** `Complementarity = automatic`: weighted for two bodies
        * (ContactProblem::choose_complementarity) */
@@ -234,7 +234,7 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The condition subsections of @p text (a parameter file with its
-     * includes expanded, or ParameterHandler's own PRM output); throws
+     * includes expanded), read before it is parsed to declare them; throws
      * InputError for a `Boundary conditions` subsection of no known kind.
      */
     ConditionSections
@@ -261,8 +261,9 @@ namespace StabilizedLagrangian
        */
       static void
       declare_parameters(ParameterHandler &prm, const ConditionSections &sections);
+      /** Parse the subsections @p sections names (those parse() returned). */
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &prm, const ConditionSections &sections);
     };
 
     /** @brief `Load stepping` subsection. */
@@ -431,9 +432,11 @@ namespace StabilizedLagrangian
      * @brief Parse a parameter file (or string) into @p prm, declared by
      * declare_all<dim>, with a clear error on failure; the boundary condition
      * subsections the text names are declared first.
+     * @return the condition subsections @p prm holds: those the text names and
+     * declare_all's template, each kind in ParameterHandler's order of subsections
      */
     template <int dim>
-    void
+    ConditionSections
     parse(ParameterHandler &prm, const std::string &text, const bool is_file);
 
     /**

@@ -12,19 +12,33 @@
 namespace StabilizedLagrangian
 {
   /**
+   * @brief The path of subsection @p name of the subsection @p parent
+   * (empty: the top level), as messages name it: `Contact/Zone left`.
+   */
+  inline std::string
+  subsection_path(const std::string &parent, const std::string &name)
+  {
+    return parent.empty() ? name : parent + "/" + name;
+  }
+
+  /**
    * @brief Registry of the plug-ins implementing one interface.
    *
    * Each plug-in registers a name (the value a user writes in the `.prm`
    * file), a documentation string, a function declaring its parameters in
    * a subsection named after it, and a factory that builds it from the
-   * parsed parameters. The driver only ever asks the registry for a model
-   * by the name the user chose; it never switches on that name.
+   * parsed parameters of that subsection and its path (e.g. `Contact/Zone
+   * left/Friction law/Coulomb`), with which its messages name the entries
+   * the user wrote: a plug-in may be chosen in more than one place. The driver only ever asks the
+   * registry for a model by the name the user chose; it never switches on that name.
    */
   template <typename InterfaceType> class PluginRegistry
   {
   public:
     using Declare = std::function<void(dealii::ParameterHandler &)>;
-    using Create  = std::function<std::unique_ptr<InterfaceType>(const dealii::ParameterHandler &)>;
+    /** builds the plug-in from its subsection and that subsection's path */
+    using Create = std::function<std::unique_ptr<InterfaceType>(const dealii::ParameterHandler &,
+                                                                const std::string &)>;
 
     /**
      * @brief Add a plug-in; called from a static initialiser in the plug-in's file.
@@ -96,37 +110,43 @@ namespace StabilizedLagrangian
     }
 
     /**
-     * @brief Build the plug-in chosen by the `Model` entry of the subsection @p subsection.
+     * @brief Build the plug-in chosen by the `Model` entry of the subsection
+     * @p subsection of the current subsection, whose path is @p path (empty:
+     * the top level).
      */
     static std::unique_ptr<InterfaceType>
-    create_from(dealii::ParameterHandler &prm, const std::string &subsection)
+    create_from(dealii::ParameterHandler &prm,
+                const std::string        &subsection,
+                const std::string        &path = "")
     {
       prm.enter_subsection(subsection);
-      std::unique_ptr<InterfaceType> model = create(prm);
+      std::unique_ptr<InterfaceType> model = create(prm, subsection_path(path, subsection));
       prm.leave_subsection();
       return model;
     }
 
     /**
-     * @brief Build the plug-in chosen by the `Model` entry of the current subsection.
+     * @brief Build the plug-in chosen by the `Model` entry of the current
+     * subsection, whose path is @p path.
      */
     static std::unique_ptr<InterfaceType>
-    create(dealii::ParameterHandler &prm)
+    create(dealii::ParameterHandler &prm, const std::string &path)
     {
-      return create(prm.get("Model"), prm);
+      return create(prm.get("Model"), prm, path);
     }
 
     /**
-     * @brief Build the plug-in @p name from its subsection of the current subsection.
+     * @brief Build the plug-in @p name from its subsection of the current
+     * subsection, whose path is @p path.
      */
     static std::unique_ptr<InterfaceType>
-    create(const std::string &name, dealii::ParameterHandler &prm)
+    create(const std::string &name, dealii::ParameterHandler &prm, const std::string &path)
     {
       const auto it = entries().find(name);
       AssertThrow(it != entries().end(),
                   dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
       prm.enter_subsection(name);
-      std::unique_ptr<InterfaceType> model = it->second.create(prm);
+      std::unique_ptr<InterfaceType> model = it->second.create(prm, subsection_path(path, name));
       prm.leave_subsection();
       return model;
     }
@@ -140,7 +160,7 @@ namespace StabilizedLagrangian
       const auto it = entries().find(name);
       AssertThrow(it != entries().end(),
                   dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
-      return it->second.create(dealii::ParameterHandler());
+      return it->second.create(dealii::ParameterHandler(), name);
     }
 
   private:
@@ -164,8 +184,9 @@ namespace StabilizedLagrangian
     /**
      * @brief Register @p PluginType in the registry of @p InterfaceType: its
      * parameters are declared by `PluginType::declare_parameters(prm)` and it is
-     * built by the constructor `PluginType(const ParameterHandler &)`, which
-     * reads the plug-in's own subsection.
+     * built by the constructor `PluginType(const ParameterHandler &, const
+     * std::string &section)`, which reads the plug-in's own subsection and
+     * names its entries from @p section, that subsection's path.
      */
     template <typename InterfaceType, typename PluginType>
     bool
@@ -175,8 +196,9 @@ namespace StabilizedLagrangian
           name,
           description,
           &PluginType::declare_parameters,
-          [](const dealii::ParameterHandler &prm) -> std::unique_ptr<InterfaceType> {
-            return std::make_unique<PluginType>(prm);
+          [](const dealii::ParameterHandler &prm,
+             const std::string              &section) -> std::unique_ptr<InterfaceType> {
+            return std::make_unique<PluginType>(prm, section);
           });
     }
 
@@ -206,7 +228,8 @@ namespace StabilizedLagrangian
           name,
           description,
           [](dealii::ParameterHandler &) {},
-          [=](const dealii::ParameterHandler &) -> std::unique_ptr<InterfaceType> {
+          [=](const dealii::ParameterHandler &,
+              const std::string &) -> std::unique_ptr<InterfaceType> {
             return std::make_unique<PluginType>(constructor_arguments...);
           });
     }
@@ -251,7 +274,8 @@ namespace StabilizedLagrangian
  * @p name is the value of the `Model` entry that selects the plug-in (and the
  * name of its subsection), @p description its documentation. The plug-in
  * provides `static void declare_parameters(ParameterHandler &)` and a
- * constructor from the `const ParameterHandler &` of its subsection. When
+ * constructor from the `const ParameterHandler &` of its subsection and that
+ * subsection's path (`const std::string &`, for its messages). When
  * @p interface and @p plugin are class templates over the dimension, the
  * plug-in is registered for dim = 2 and 3.
  */

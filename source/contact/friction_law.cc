@@ -12,16 +12,17 @@ namespace StabilizedLagrangian
     class Coulomb : public Interface
     {
     public:
-      explicit Coulomb(const double mu)
+      /** @param section the law's subsection, for messages */
+      Coulomb(const double mu, const std::string &section)
           : mu(mu)
       {
         if (!(mu >= 0.))
-          throw InputError("Contact/Friction law/Coulomb/Friction coefficient must be >= 0, got " +
+          throw InputError(section + "/Friction coefficient must be >= 0, got " +
                            std::to_string(mu) + ".");
       }
 
-      explicit Coulomb(const ParameterHandler &prm)
-          : Coulomb(prm.get_double("Friction coefficient"))
+      Coulomb(const ParameterHandler &prm, const std::string &section)
+          : Coulomb(prm.get_double("Friction coefficient"), section)
       {
       }
 
@@ -67,15 +68,16 @@ namespace StabilizedLagrangian
     class Tresca : public Interface
     {
     public:
-      explicit Tresca(const double s)
+      /** @param section the law's subsection, for messages */
+      Tresca(const double s, const std::string &section)
           : s(s)
       {
         if (!(s >= 0.))
-          throw InputError("Contact/Friction law/Tresca/Threshold must be >= 0.");
+          throw InputError(section + "/Threshold must be >= 0.");
       }
 
-      explicit Tresca(const ParameterHandler &prm)
-          : Tresca(prm.get_double("Threshold"))
+      Tresca(const ParameterHandler &prm, const std::string &section)
+          : Tresca(prm.get_double("Threshold"), section)
       {
       }
 

@@ -449,15 +449,16 @@ namespace StabilizedLagrangian
                           "Address space (MiB) Gmsh may use to mesh a .geo file.");
       }
 
-      explicit GmshMesh(const ParameterHandler &prm)
-          : file(Parameters::input_path(prm.get("Mesh file")))
+      GmshMesh(const ParameterHandler &prm, const std::string &section)
+          : section(section)
+          , file(Parameters::input_path(prm.get("Mesh file")))
           , refinements(prm.get_integer("Global refinements"))
       {
         if (file.empty() || !std::filesystem::is_regular_file(file))
-          throw InputError("Geometry/gmsh/Mesh file: cannot open '" + file + "'.");
+          throw InputError(section + "/Mesh file: cannot open '" + file + "'.");
         const std::string extension = std::filesystem::path(file).extension();
         if (extension != ".msh" && extension != ".geo")
-          throw InputError("Geometry/gmsh/Mesh file: '" + file +
+          throw InputError(section + "/Mesh file: '" + file +
                            "' is neither a .msh nor a .geo file.");
         std::string msh_file = file;
         if (extension == ".geo")
@@ -533,14 +534,14 @@ namespace StabilizedLagrangian
           {
             std::ostringstream message;
             error.print_info(message);
-            throw InputError("Geometry/gmsh/Mesh file: cannot read '" + file +
+            throw InputError(section + "/Mesh file: cannot read '" + file +
                              "' as a Gmsh mesh: " + Utilities::trim(message.str()));
           }
         unsigned int n_simplices = 0;
         for (const auto &cell : coarse.active_cell_iterators())
           {
             if (!cell->reference_cell().is_hyper_cube() && !cell->reference_cell().is_simplex())
-              throw InputError("Geometry/gmsh/Mesh file: '" + file + "' has " +
+              throw InputError(section + "/Mesh file: '" + file + "' has " +
                                cell->reference_cell().to_string() +
                                " cells; the mesh must be made of quadrilaterals or hexahedra, "
                                "or of triangles or tetrahedra.");
@@ -548,7 +549,7 @@ namespace StabilizedLagrangian
           }
         simplex = n_simplices > 0;
         if (simplex && n_simplices != coarse.n_active_cells())
-          throw InputError("Geometry/gmsh/Mesh file: '" + file + "' mixes " +
+          throw InputError(section + "/Mesh file: '" + file + "' mixes " +
                            std::to_string(n_simplices) + " simplices with " +
                            std::to_string(coarse.n_active_cells() - n_simplices) +
                            " hypercube cells; the finite element pairs need one cell shape "
@@ -564,7 +565,7 @@ namespace StabilizedLagrangian
       void
       read_spherical_boundaries(const std::string &text)
       {
-        const std::string entry = "Geometry/gmsh/Spherical boundaries";
+        const std::string entry = section + "/Spherical boundaries";
         for (const std::string &item : Utilities::split_string_list(text, ';'))
           {
             const auto colon = item.find(':');
@@ -631,6 +632,7 @@ namespace StabilizedLagrangian
                            std::to_string(smallest) + " to " + std::to_string(largest) + " mm.");
       }
 
+      const std::string                                      section; ///< for messages
       const std::string                                      file;
       const unsigned int                                     refinements;
       Triangulation<dim>                                     coarse;

@@ -51,12 +51,12 @@ namespace StabilizedLagrangian
       template <int dim>
       bool
       read_cell_shape(const ParameterHandler &prm,
-                      const std::string      &geometry,
+                      const std::string      &section,
                       const bool              local_refinement)
       {
         const bool simplex = prm.get("Cell shape") == "simplex";
         if (simplex && dim == 3 && local_refinement)
-          throw InputError("Geometry/" + geometry +
+          throw InputError(section +
                            "/Local refinements must be 0 with Cell shape = simplex in 3D: "
                            "deal.II 9.4 cannot constrain the hanging nodes of tetrahedra. "
                            "Refine uniformly (Global refinements) instead.");
@@ -203,7 +203,7 @@ namespace StabilizedLagrangian
         declare_cell_shape(prm);
       }
 
-      explicit Block(const ParameterHandler &prm)
+      Block(const ParameterHandler &prm, const std::string &section)
           : length(prm.get_double("Length"))
           , height(prm.get_double("Height"))
           , width(prm.get_double("Width"))
@@ -211,7 +211,7 @@ namespace StabilizedLagrangian
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , simplex(
-                read_cell_shape<dim>(prm, "block", local_refinements > 0 && refinement_radius > 0.))
+                read_cell_shape<dim>(prm, section, local_refinements > 0 && refinement_radius > 0.))
       {
         const auto coordinates = Utilities::split_string_list(prm.get("Local refinement center"));
         for (unsigned int d = 0; d < dim; ++d)
@@ -219,7 +219,7 @@ namespace StabilizedLagrangian
         for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
           subdivisions.push_back(Utilities::string_to_int(s));
         if (!(length > 0. && height > 0. && width > 0.))
-          throw InputError("Geometry/block: Length, Height and Width must be > 0.");
+          throw InputError(section + ": Length, Height and Width must be > 0.");
         const std::string left = prm.get("Left side");
         try
           {
@@ -227,7 +227,7 @@ namespace StabilizedLagrangian
           }
         catch (...)
           {
-            throw InputError("Geometry/block/Left side = '" + left +
+            throw InputError(section + "/Left side = '" + left +
                              "': give a number (mm) or centred.");
           }
       }
@@ -305,18 +305,18 @@ namespace StabilizedLagrangian
         declare_cell_shape(prm);
       }
 
-      explicit HalfBall(const ParameterHandler &prm)
+      HalfBall(const ParameterHandler &prm, const std::string &section)
           : radius(prm.get_double("Radius"))
           , global_refinements(prm.get_integer("Global refinements"))
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , contact_radius(prm.get_double("Contact zone radius"))
           , symmetric(prm.get_bool("Symmetry planes"))
-          , simplex(read_cell_shape<dim>(
-                prm, "half ball", local_refinements > 0 && refinement_radius > 0.))
+          , simplex(
+                read_cell_shape<dim>(prm, section, local_refinements > 0 && refinement_radius > 0.))
       {
         if (!(radius > 0.))
-          throw InputError("Geometry/half ball/Radius must be > 0.");
+          throw InputError(section + "/Radius must be > 0.");
       }
 
       bool
@@ -444,7 +444,7 @@ namespace StabilizedLagrangian
                           "Distance (mm) between the poles before loading, > 0.");
       }
 
-      explicit TwoBalls(const ParameterHandler &prm)
+      TwoBalls(const ParameterHandler &prm, const std::string &section)
           : radius(prm.get_double("Radius"))
           , gap(prm.get_double("Initial gap"))
           , global_refinements(prm.get_integer("Global refinements"))
@@ -453,9 +453,10 @@ namespace StabilizedLagrangian
           , contact_radius(prm.get_double("Contact zone radius"))
       {
         if (!(radius > 0.))
-          throw InputError("Geometry/two balls/Radius must be > 0.");
+          throw InputError(section + "/Radius must be > 0.");
         if (!(gap > 0. && gap < radius))
-          throw InputError("Geometry/two balls/Initial gap must be > 0 (the poles of the two "
+          throw InputError(section +
+                           "/Initial gap must be > 0 (the poles of the two "
                            "bodies must not share a vertex) and smaller than the radius.");
       }
 

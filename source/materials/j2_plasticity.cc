@@ -35,25 +35,28 @@ namespace StabilizedLagrangian
     J2Plasticity<dim>::J2Plasticity(const double                                  youngs_modulus,
                                     const double                                  poissons_ratio,
                                     const Kinematics                              kinematics,
-                                    const std::vector<std::pair<double, double>> &hardening_points)
+                                    const std::vector<std::pair<double, double>> &hardening_points,
+                                    const std::string                            &section)
         : E(youngs_modulus)
         , nu(poissons_ratio)
         , kinematics(kinematics)
-        , hardening(hardening_points)
+        , hardening(hardening_points, section + "/Hardening curve")
         , bulk_modulus(E / (3. * (1. - 2. * nu)))
         , shear_modulus(E / (2. * (1. + nu)))
     {
-      require_positive(E, "Material/J2 plasticity/Young's modulus");
-      require_poissons_ratio(nu, "Material/J2 plasticity/Poisson's ratio");
+      require_positive(E, section + "/Young's modulus");
+      require_poissons_ratio(nu, section + "/Poisson's ratio");
     }
 
     template <int dim>
-    J2Plasticity<dim>::J2Plasticity(const ParameterHandler &prm)
-        : J2Plasticity(prm.get_double("Young's modulus"),
-                       prm.get_double("Poisson's ratio"),
-                       prm.get("Kinematics") == "finite strain" ? Kinematics::finite_strain
-                                                                : Kinematics::small_strain,
-                       HardeningCurve::parse(prm.get("Hardening curve")))
+    J2Plasticity<dim>::J2Plasticity(const ParameterHandler &prm, const std::string &section)
+        : J2Plasticity(
+              prm.get_double("Young's modulus"),
+              prm.get_double("Poisson's ratio"),
+              prm.get("Kinematics") == "finite strain" ? Kinematics::finite_strain
+                                                       : Kinematics::small_strain,
+              HardeningCurve::parse(prm.get("Hardening curve"), section + "/Hardening curve"),
+              section)
     {
     }
 

@@ -7,15 +7,16 @@ namespace StabilizedLagrangian
   namespace Materials
   {
     template <int dim>
-    LinearElastic<dim>::LinearElastic(const double youngs_modulus, const double poissons_ratio)
+    LinearElastic<dim>::LinearElastic(const double       youngs_modulus,
+                                      const double       poissons_ratio,
+                                      const std::string &section)
         : E(youngs_modulus)
         , nu(poissons_ratio)
     {
       if (!(E > 0.))
-        throw InputError("Material/linear elastic/Young's modulus must be > 0, got " +
-                         std::to_string(E) + ".");
+        throw InputError(section + "/Young's modulus must be > 0, got " + std::to_string(E) + ".");
       if (!(nu >= 0. && nu < 0.5))
-        throw InputError("Material/linear elastic/Poisson's ratio must be in [0, 0.5), got " +
+        throw InputError(section + "/Poisson's ratio must be in [0, 0.5), got " +
                          std::to_string(nu) + ".");
       const double lame_lambda = E * nu / ((1. + nu) * (1. - 2. * nu));
       const double G           = E / (2. * (1. + nu));
@@ -28,8 +29,9 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    LinearElastic<dim>::LinearElastic(const ParameterHandler &prm)
-        : LinearElastic(prm.get_double("Young's modulus"), prm.get_double("Poisson's ratio"))
+    LinearElastic<dim>::LinearElastic(const ParameterHandler &prm, const std::string &section)
+        : LinearElastic(
+              prm.get_double("Young's modulus"), prm.get_double("Poisson's ratio"), section)
     {
     }
 

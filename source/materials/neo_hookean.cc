@@ -9,18 +9,20 @@ namespace StabilizedLagrangian
   namespace Materials
   {
     template <int dim>
-    NeoHookean<dim>::NeoHookean(const double c10, const double poissons_ratio)
+    NeoHookean<dim>::NeoHookean(const double       c10,
+                                const double       poissons_ratio,
+                                const std::string &section)
         : nu(poissons_ratio)
         , shear_modulus(2. * c10)
         , lame_lambda(2. * shear_modulus * nu / (1. - 2. * nu))
     {
-      require_positive(c10, "Material/neo-Hookean/C10");
-      require_poissons_ratio(nu, "Material/neo-Hookean/Poisson's ratio");
+      require_positive(c10, section + "/C10");
+      require_poissons_ratio(nu, section + "/Poisson's ratio");
     }
 
     template <int dim>
-    NeoHookean<dim>::NeoHookean(const ParameterHandler &prm)
-        : NeoHookean(prm.get_double("C10"), prm.get_double("Poisson's ratio"))
+    NeoHookean<dim>::NeoHookean(const ParameterHandler &prm, const std::string &section)
+        : NeoHookean(prm.get_double("C10"), prm.get_double("Poisson's ratio"), section)
     {
     }
 

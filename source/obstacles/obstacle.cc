@@ -64,10 +64,10 @@ namespace StabilizedLagrangian
                           "Normal of the plane pointing out of the obstacle, towards the body.");
       }
 
-      /** @brief The plane of the `Point` and `Normal` entries. */
-      explicit Plane(const ParameterHandler &prm)
-          : Plane(to_point<dim>(parse_vector("Obstacle/plane/Point", prm.get("Point"), dim)),
-                  nonzero_normal(prm))
+      /** @brief The plane of the `Point` and `Normal` entries of @p section. */
+      Plane(const ParameterHandler &prm, const std::string &section)
+          : Plane(to_point<dim>(parse_vector(section + "/Point", prm.get("Point"), dim)),
+                  nonzero_normal(prm, section))
       {
       }
 
@@ -113,12 +113,12 @@ namespace StabilizedLagrangian
 
     private:
       static Tensor<1, dim>
-      nonzero_normal(const ParameterHandler &prm)
+      nonzero_normal(const ParameterHandler &prm, const std::string &section)
       {
         const Point<dim> normal =
-            to_point<dim>(parse_vector("Obstacle/plane/Normal", prm.get("Normal"), dim));
+            to_point<dim>(parse_vector(section + "/Normal", prm.get("Normal"), dim));
         if (normal.norm() == 0.)
-          throw InputError("Obstacle/plane/Normal must not be the zero vector.");
+          throw InputError(section + "/Normal must not be the zero vector.");
         return Tensor<1, dim>(normal);
       }
 
@@ -133,12 +133,13 @@ namespace StabilizedLagrangian
     template <int dim> class Ball : public Interface<dim>
     {
     public:
-      Ball(const Point<dim> &center, const double radius)
+      /** @param section the obstacle's subsection, for messages */
+      Ball(const Point<dim> &center, const double radius, const std::string &section)
           : center(center)
           , radius(radius)
       {
         if (!(radius > 0.))
-          throw InputError("Obstacle/ball/Radius must be > 0.");
+          throw InputError(section + "/Radius must be > 0.");
       }
 
       static void
@@ -151,10 +152,11 @@ namespace StabilizedLagrangian
         prm.declare_entry("Radius", "100", Patterns::Double(), "Radius (mm), > 0.");
       }
 
-      /** @brief The ball of the `Center` and `Radius` entries. */
-      explicit Ball(const ParameterHandler &prm)
-          : Ball(to_point<dim>(parse_vector("Obstacle/ball/Center", prm.get("Center"), dim)),
-                 prm.get_double("Radius"))
+      /** @brief The ball of the `Center` and `Radius` entries of @p section. */
+      Ball(const ParameterHandler &prm, const std::string &section)
+          : Ball(to_point<dim>(parse_vector(section + "/Center", prm.get("Center"), dim)),
+                 prm.get_double("Radius"),
+                 section)
       {
       }
 

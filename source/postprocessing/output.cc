@@ -501,7 +501,7 @@ namespace StabilizedLagrangian
                                       const DoFHandler<dim>               &field_dofs,
                                       const TrilinosWrappers::MPI::Vector &vertex_values)
   {
-    const std::string                  &directory = output_parameters.directory;
+    const std::string                  &directory = output_directory;
     const TrilinosWrappers::MPI::Vector u         = ghosted_displacement();
     IndexSet                            field_relevant;
     DoFTools::extract_locally_relevant_dofs(field_dofs, field_relevant);
@@ -644,11 +644,11 @@ namespace StabilizedLagrangian
     std::ostringstream vtu;
     data_out.write_vtu(vtu);
     const std::string name = "obstacle_" + Utilities::int_to_string(step, 5) + ".vtu";
-    SafeFiles::write_atomically(output_parameters.directory + "/" + name, vtu.str());
+    SafeFiles::write_atomically(output_directory + "/" + name, vtu.str());
     // the same steps as solution.pvd
     std::ostringstream pvd;
     DataOutBase::write_pvd_record(pvd, records_of(pvd_records, "obstacle", ".vtu"));
-    SafeFiles::write_atomically(output_parameters.directory + "/obstacle.pvd", pvd.str());
+    SafeFiles::write_atomically(output_directory + "/obstacle.pvd", pvd.str());
   }
 
   template <int dim>
@@ -684,8 +684,7 @@ namespace StabilizedLagrangian
       sorted.push_back(entry.second);
     std::sort(sorted.begin(), sorted.end());
     std::ostringstream name;
-    name << output_parameters.directory << "/profile-" << std::setw(5) << std::setfill('0') << step
-         << ".csv";
+    name << output_directory << "/profile-" << std::setw(5) << std::setfill('0') << step << ".csv";
     std::ostringstream file;
     for (unsigned int c = 0; c < columns.size(); ++c)
       file << (c ? "," : "") << columns[c];
@@ -729,7 +728,7 @@ namespace StabilizedLagrangian
       try
         {
           namespace fs        = std::filesystem;
-          const fs::path path = output_parameters.directory;
+          const fs::path path = output_directory;
           fs::create_directories(path);
           // the files of an earlier run would mix with this one's (a longer
           // run leaves later steps behind): the program owns them and removes them
@@ -750,7 +749,7 @@ namespace StabilizedLagrangian
         }
       catch (const std::exception &e)
         {
-          error = "Output/Output directory = '" + output_parameters.directory +
+          error = "Output/Output directory = '" + output_directory +
                   "': the directory cannot be created, cleared or written (" + e.what() + ").";
         }
     error = Utilities::MPI::broadcast(mpi_communicator, error, 0);
@@ -766,11 +765,10 @@ namespace StabilizedLagrangian
       return;
     std::ostringstream pvd;
     DataOutBase::write_pvd_record(pvd, pvd_records);
-    SafeFiles::write_atomically(output_parameters.directory + "/solution.pvd", pvd.str());
+    SafeFiles::write_atomically(output_directory + "/solution.pvd", pvd.str());
     std::ostringstream surface;
     DataOutBase::write_pvd_record(surface, records_of(pvd_records, "contact_surface", ".pvtu"));
-    SafeFiles::write_atomically(output_parameters.directory + "/contact_surface.pvd",
-                                surface.str());
+    SafeFiles::write_atomically(output_directory + "/contact_surface.pvd", surface.str());
   }
 
   // the class itself is instantiated once, in contact_problem.cc

@@ -484,20 +484,19 @@ namespace StabilizedLagrangian
         {
           if (root && cycles_bytes > 0)
             SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
-          output_parameters.directory = cycle_directory(cycle);
-          statistics.resume(
-              output_parameters.directory, dim, root, statistics_supports(), statistics_state);
+          output_directory = cycle_directory(cycle);
+          statistics.resume(output_directory, dim, root, statistics_supports(), statistics_state);
           write_pvd();
         }
       catch (const std::exception &e)
         {
-          output_parameters.directory = base;
+          output_directory = base;
           throw InputError("--resume: the output files in " + base +
                            " do not match the checkpoint in " + find_checkpoint(base) + ": " +
                            e.what());
         }
     });
-    output_parameters.directory = base;
+    output_directory = base;
   }
 
   template <int dim>

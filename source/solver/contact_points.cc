@@ -262,8 +262,8 @@ namespace StabilizedLagrangian
         state.in_contact,
         state.friction_threshold,
         friction_law_of(state).has_friction(),
-        contact_parameters.r_n,
-        contact_parameters.r_t,
+        chosen.r_n,
+        chosen.r_t,
         loops.linearised(Loop::friction)
             ? friction_law_of(state).threshold_derivative(threshold_pressure(k.contact_pressure))
             : 0.);
@@ -296,7 +296,7 @@ namespace StabilizedLagrangian
     // exactly zero does, or a load-controlled body has no support at all.
     const double gap = state.pairing.gap(k.position);
     return Contact::is_in_contact(
-        Contact::augmented_pressure(k.contact_pressure, status_gap(gap), contact_parameters.r_n));
+        Contact::augmented_pressure(k.contact_pressure, status_gap(gap), chosen.r_n));
   }
 
   template <int dim>

@@ -14,12 +14,51 @@
 
 namespace StabilizedLagrangian
 {
+  namespace
+  {
+    /** The struct of a parameter subsection, parsed once. */
+    template <typename Section, typename... Arguments>
+    Section
+    parsed(ParameterHandler &prm, const Arguments &...arguments)
+    {
+      Section section;
+      section.parse_parameters(prm, arguments...);
+      return section;
+    }
+
+    /** `Geometry/Axisymmetric`, refused outside 2D. */
+    template <int dim>
+    bool
+    parsed_axisymmetric(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      const bool axisymmetric = prm.get_bool("Axisymmetric");
+      prm.leave_subsection();
+      if (axisymmetric && dim != 2)
+        throw InputError("Geometry/Axisymmetric = true needs Dimension = 2 (the meridian "
+                         "section of the solid of revolution).");
+      return axisymmetric;
+    }
+  } // namespace
+
   template <int dim>
-  ContactProblem<dim>::ContactProblem(ParameterHandler &prm, const bool verbose)
+  ContactProblem<dim>::ContactProblem(ParameterHandler                    &prm,
+                                      const Parameters::ConditionSections &sections,
+                                      const bool                           verbose)
       : mpi_communicator(MPI_COMM_WORLD)
       , pcout(std::cout, verbose && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
       , geometry(Geometry::create<dim>(prm))
+      , axisymmetric(parsed_axisymmetric<dim>(prm))
+      , contact_parameters(parsed<Parameters::Contact>(prm))
+      , boundary_conditions(parsed<Parameters::BoundaryConditions<dim>>(prm, sections))
+      , load_stepping(parsed<Parameters::LoadStepping>(prm))
+      , solver_parameters(parsed<Parameters::NonlinearSolver>(prm))
+      , linear_solver_parameters(parsed<Parameters::LinearSolver>(prm))
+      , output_parameters(parsed<Parameters::Output>(prm))
+      , adaptive_refinement(parsed<Parameters::AdaptiveRefinement>(prm))
+      , chosen(contact_parameters)
+      , output_directory(output_parameters.directory)
       , triangulation_storage(new_triangulation(mpi_communicator, geometry->simplex_cells()))
       , triangulation(*triangulation_storage)
       , dof_handler_u(triangulation)
@@ -35,20 +74,7 @@ namespace StabilizedLagrangian
                axisymmetric}
   {
     Utilities::System::get_memory_stats(memory_at_start);
-    prm.enter_subsection("Geometry");
-    axisymmetric = prm.get_bool("Axisymmetric");
-    prm.leave_subsection();
-    if (axisymmetric && dim != 2)
-      throw InputError("Geometry/Axisymmetric = true needs Dimension = 2 (the meridian "
-                       "section of the solid of revolution).");
-    contact_parameters.parse_parameters(prm);
-    boundary_conditions.parse_parameters(prm);
-    load_stepping.parse_parameters(prm);
-    solver_parameters.parse_parameters(prm);
     loops = LoopPolicy(solver_parameters);
-    linear_solver_parameters.parse_parameters(prm);
-    output_parameters.parse_parameters(prm);
-    adaptive_refinement.parse_parameters(prm);
 
     obstacle = Obstacles::create<dim>(prm);
     prm.enter_subsection("Obstacle");
@@ -78,23 +104,19 @@ namespace StabilizedLagrangian
     prm.leave_subsection();
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
-    friction_law = FrictionLaws::create(prm);
+    friction_law = FrictionLaws::create(prm, "Contact");
     prm.leave_subsection();
-    {
-      // the zones declared: those of the parsed text (and the template's)
-      std::ostringstream declared;
-      prm.print_parameters(declared, ParameterHandler::PRM);
-      for (const auto &name : Parameters::condition_sections(declared.str()).zones)
-        {
-          prm.enter_subsection("Contact");
-          prm.enter_subsection("Zone " + name);
-          const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
-          if (!boundaries.empty())
-            contact_zones.push_back(ContactZone{name, boundaries, FrictionLaws::create(prm)});
-          prm.leave_subsection();
-          prm.leave_subsection();
-        }
-    }
+    for (const auto &name : sections.zones)
+      {
+        prm.enter_subsection("Contact");
+        prm.enter_subsection("Zone " + name);
+        const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
+        if (!boundaries.empty())
+          contact_zones.push_back(
+              ContactZone{name, boundaries, FrictionLaws::create(prm, "Contact/Zone " + name)});
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
     choose_complementarity();
     if (!contact_zones.empty() && weighted_complementarity())
@@ -422,9 +444,9 @@ namespace StabilizedLagrangian
                        (bodies.empty() ? "" : "; its bodies are " + bodies) + ".");
     };
     for (const auto &name : contact_parameters.boundary_names)
-      contact_parameters.boundary_ids.insert(resolve(name, "Contact/Contact boundary ids"));
+      chosen.contact_boundaries.insert(resolve(name, "Contact/Contact boundary ids"));
     for (const auto &name : contact_parameters.master_names)
-      contact_parameters.master_ids.insert(resolve(name, "Contact/Master boundary ids"));
+      chosen.master_boundaries.insert(resolve(name, "Contact/Master boundary ids"));
     const auto resolve_condition = [&](auto &bc) {
       if (!bc.boundary_name.empty())
         bc.boundary_id = resolve(bc.boundary_name, bc.section + "/Boundary id");
@@ -439,7 +461,7 @@ namespace StabilizedLagrangian
     std::for_each(
         boundary_conditions.plates.begin(), boundary_conditions.plates.end(), resolve_condition);
 
-    for (const auto id : contact_parameters.boundary_ids)
+    for (const auto id : chosen.contact_boundaries)
       require_boundary(id, "Contact/Contact boundary ids");
     zone_of_boundary.clear();
     for (unsigned int z = 0; z < contact_zones.size(); ++z)
@@ -448,16 +470,16 @@ namespace StabilizedLagrangian
           const std::string where = "Contact/Zone " + contact_zones[z].name + "/Boundary ids";
           const auto        id    = Parameters::boundary_id_or_name(entry, where);
           const types::boundary_id boundary = id ? *id : resolve(entry, where);
-          if (contact_parameters.boundary_ids.count(boundary) == 0)
+          if (chosen.contact_boundaries.count(boundary) == 0)
             throw InputError(where + ": boundary " + entry +
                              " is not a contact boundary (Contact/Contact boundary ids).");
           if (!zone_of_boundary.emplace(boundary, z + 1).second)
             throw InputError(where + ": boundary " + entry + " is already in another zone.");
         }
-    for (const auto id : contact_parameters.master_ids)
+    for (const auto id : chosen.master_boundaries)
       {
         require_boundary(id, "Contact/Master boundary ids");
-        if (contact_parameters.boundary_ids.count(id) > 0)
+        if (chosen.contact_boundaries.count(id) > 0)
           throw InputError("Contact/Master boundary ids: boundary " + std::to_string(id) +
                            " is also in Contact/Contact boundary ids; the slave and master "
                            "surfaces must be different boundaries.");

@@ -96,7 +96,7 @@ namespace StabilizedLagrangian
     locally_relevant.set_size(n_u + n_multipliers);
     locally_relevant.add_indices(locally_relevant_u);
     locally_relevant.add_indices(relevant_multipliers, n_u);
-    if (contact_parameters.master_ids.empty())
+    if (chosen.master_boundaries.empty())
       partner = std::make_unique<Contact::RigidObstacle<dim>>(*obstacle, obstacle_motion);
     else
       {
@@ -113,7 +113,7 @@ namespace StabilizedLagrangian
           }
         auto master_surface =
             std::make_unique<Contact::MasterSurface<dim>>(dof_handler_u,
-                                                          contact_parameters.master_ids,
+                                                          chosen.master_boundaries,
                                                           mpi_communicator,
                                                           contact_parameters.replicated_search,
                                                           search_distance);
@@ -156,7 +156,7 @@ namespace StabilizedLagrangian
     residual_scaling.reinit(locally_owned, mpi_communicator);
     residual_scaling = 1.;
     for (const auto &[row, component] : owned_multiplier_components)
-      residual_scaling(row) = (component == 0) ? contact_parameters.r_n : contact_parameters.r_t;
+      residual_scaling(row) = (component == 0) ? chosen.r_n : chosen.r_t;
     residual_scaling.compress(VectorOperation::insert);
   }
 

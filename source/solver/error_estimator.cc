@@ -347,8 +347,7 @@ namespace StabilizedLagrangian
     const types::boundary_id id = cell->face(f)->boundary_id();
     // Γc carries the contact terms; the master surface receives the slave's
     // tractions at points it does not hold (no term: doc/formulation.md)
-    if (contact_parameters.boundary_ids.count(id) > 0 ||
-        contact_parameters.master_ids.count(id) > 0)
+    if (chosen.contact_boundaries.count(id) > 0 || chosen.master_boundaries.count(id) > 0)
       return;
     // the prescribed components take any traction: the reactions
     std::vector<bool> free(dim, true);
@@ -619,7 +618,7 @@ namespace StabilizedLagrangian
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
-              contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0)
+              chosen.master_boundaries.count(cell->face(f)->boundary_id()) > 0)
             {
               const Materials::Interface<dim> &material = material_of(cell);
               compliance                                = std::max(compliance,

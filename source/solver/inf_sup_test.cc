@@ -225,8 +225,8 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::run_inf_sup_test(const unsigned int n_meshes)
   {
-    std::filesystem::create_directories(output_parameters.directory);
-    const std::string filename = output_parameters.directory + "/inf_sup.csv";
+    std::filesystem::create_directories(output_directory);
+    const std::string filename = output_directory + "/inf_sup.csv";
     std::ofstream     table(filename);
     table << "mesh,contact_mesh_size_mm,displacement_dofs,normal_multiplier_dofs,beta\n";
     pcout << "Inf-sup test of the pair " << contact_parameters.fe_pair

@@ -56,7 +56,7 @@ namespace StabilizedLagrangian
             time = 0.;
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
           }
-        output_parameters.directory = cycle_directory(cycle);
+        output_directory = cycle_directory(cycle);
         Timer cycle_clock;
         check_inf_sup();
         const bool converged = solve_load_path(resumed);
@@ -152,7 +152,7 @@ namespace StabilizedLagrangian
                                   run_directory + "/" + entry.path().filename().string());
         std::filesystem::remove(from);
       }
-    output_parameters.directory = run_directory;
+    output_directory = run_directory;
     std::ostringstream report;
     report << "Accuracy target " << (met ? "met" : "NOT met") << " at cycle " << last << " of "
            << adaptive_refinement.cycles << ": " << triangulation.n_global_active_cells()
@@ -251,8 +251,8 @@ namespace StabilizedLagrangian
   {
     const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     if (root)
-      std::filesystem::create_directories(output_parameters.directory);
-    statistics.open(output_parameters.directory, dim, root, statistics_supports());
+      std::filesystem::create_directories(output_directory);
+    statistics.open(output_directory, dim, root, statistics_supports());
     pvd_records.clear();
     active_set.clear();
     accumulated_slip.clear();
@@ -304,7 +304,7 @@ namespace StabilizedLagrangian
         pcout << "ERROR: load step " << step + 1 << " from t = " << time << ": "
               << unrecoverable_failure
               << ", which a smaller load step cannot cure. The results of the " << step
-              << " converged steps are in " << output_parameters.directory << ".\n";
+              << " converged steps are in " << output_directory << ".\n";
         return false;
       }
     const double failed_size = steps.step_size();
@@ -313,8 +313,8 @@ namespace StabilizedLagrangian
         pcout << "ERROR: load step " << step + 1 << " from t = " << time
               << " did not converge after " << steps.max_cuts()
               << " step cuts (Load stepping/Maximum step cuts), with the step " << failed_size
-              << ". The results of the " << step << " converged steps are in "
-              << output_parameters.directory << ".\n";
+              << ". The results of the " << step << " converged steps are in " << output_directory
+              << ".\n";
         return false;
       }
     pcout << "  step did not converge; cutting the step to " << steps.step_size() << "\n";
@@ -392,7 +392,7 @@ namespace StabilizedLagrangian
     pcout << "Stopped at the wall-time limit (Load stepping/Wall time limit = " << limit
           << " s) after load step " << step << " at t = " << time << ", " << elapsed
           << " s into the run. The results of the " << step << " converged steps are in "
-          << output_parameters.directory
+          << output_directory
           << (output_parameters.checkpoint_interval > 0
                   ? "; `--resume` continues from the checkpoint written now.\n"
                   : "; with `Output/Checkpoint interval` > 0 it could be resumed.\n");
@@ -546,7 +546,7 @@ namespace StabilizedLagrangian
     file << '\n'
          << dim << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
          << n_multipliers << ',' << Utilities::MPI::n_mpi_processes(mpi_communicator) << ','
-         << contact_parameters.r_n << ',' << contact_parameters.r_t << ',' << n_steps << ','
+         << chosen.r_n << ',' << chosen.r_t << ',' << n_steps << ','
          << statistics.cumulative_newton_iterations() << ','
          << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
          << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
@@ -565,7 +565,7 @@ namespace StabilizedLagrangian
     for (const auto &entry : slowest)
       file << ',' << entry.second;
     file << '\n';
-    SafeFiles::write_atomically(output_parameters.directory + "/run_summary.csv", file.str());
+    SafeFiles::write_atomically(output_directory + "/run_summary.csv", file.str());
   }
 
   template <int dim>

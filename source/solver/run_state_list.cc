@@ -291,7 +291,7 @@ namespace StabilizedLagrangian
                  std::to_string(contact_states.size()));
     if (!valid_states(states))
       in.damaged("its contact points' states hold invalid values");
-    const bool rigid_partner = contact_parameters.master_ids.empty();
+    const bool rigid_partner = chosen.master_boundaries.empty();
     for (const auto &point : states)
       if (point.zone > contact_zones.size() || (rigid_partner && point.pairing.master_face >= 0))
         in.damaged("a contact point names a contact zone or master face the scene does not have");

@@ -37,7 +37,7 @@ namespace StabilizedLagrangian
         for (const auto &bc : boundary_conditions.point_dirichlet)
           held = held || bc.components[1];
         if (with_contact)
-          for (const auto id : contact_parameters.boundary_ids)
+          for (const auto id : chosen.contact_boundaries)
             for_each_boundary_vertex(id, [&](const Point<dim> &vertex) {
               held = held || any_friction() || std::abs(partner->project(vertex).normal[1]) > 1e-6;
             });
@@ -117,7 +117,7 @@ namespace StabilizedLagrangian
         }
     // the contact boundary: along the obstacle's normal, or wholly with friction
     if (with_contact)
-      for (const auto id : contact_parameters.boundary_ids)
+      for (const auto id : chosen.contact_boundaries)
         for_each_boundary_vertex(id, [&](const Point<dim> &vertex) {
           if (any_friction())
             add_support(vertex, std::vector<bool>(dim, true));
@@ -350,22 +350,20 @@ namespace StabilizedLagrangian
     E = Utilities::MPI::min(E, mpi_communicator);
     if (contact_parameters.r_n_automatic)
       {
-        contact_parameters.r_n =
-            contact_parameters.r_n_factor * Contact::automatic_r_n_constant * E / h;
+        chosen.r_n = contact_parameters.r_n_factor * Contact::automatic_r_n_constant * E / h;
         pcout << "  r_n = automatic: " << contact_parameters.r_n_factor << " x "
-              << Contact::automatic_r_n_constant << " E/h = " << contact_parameters.r_n
-              << " N/mm^3 (E = " << E << " MPa, h = " << h << " mm)\n";
+              << Contact::automatic_r_n_constant << " E/h = " << chosen.r_n << " N/mm^3 (E = " << E
+              << " MPa, h = " << h << " mm)\n";
       }
     if (contact_parameters.r_t_automatic)
       {
         // without prescribed motion, the contact mesh size is the length scale
         const double increment = largest_dirichlet_increment();
         const double length    = increment > 0. ? increment : h;
-        contact_parameters.r_t =
-            contact_parameters.r_t_factor * Contact::automatic_r_t_constant / length;
+        chosen.r_t = contact_parameters.r_t_factor * Contact::automatic_r_t_constant / length;
         pcout << "  r_t = automatic: " << contact_parameters.r_t_factor << " x "
-              << Contact::automatic_r_t_constant << "/l = " << contact_parameters.r_t
-              << " 1/mm (l = " << length << " mm, "
+              << Contact::automatic_r_t_constant << "/l = " << chosen.r_t << " 1/mm (l = " << length
+              << " mm, "
               << (increment > 0. ? "the largest prescribed displacement increment of a load step"
                                  : "h: no prescribed displacement increment")
               << ")\n";

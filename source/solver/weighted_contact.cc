@@ -109,8 +109,8 @@ namespace StabilizedLagrangian
     else if (local_refinement_3d)
       choice = {Conditions::pointwise,
                 "adaptive refinement of a 3D contact surface makes hanging nodes"};
-    contact_parameters.complementarity = choice.first;
-    complementarity_choice             = "Complementarity = automatic: " +
+    chosen.complementarity = choice.first;
+    complementarity_choice = "Complementarity = automatic: " +
                              std::string(weighted_complementarity() ? "weighted" : "pointwise") +
                              " (" + choice.second + ")";
   }
@@ -131,7 +131,7 @@ namespace StabilizedLagrangian
     if (constrained == 1 && contact_parameters.complementarity_automatic &&
         !fe_pair->dual_multiplier())
       {
-        contact_parameters.complementarity = Parameters::Complementarity::pointwise;
+        chosen.complementarity = Parameters::Complementarity::pointwise;
         complementarity_choice = "Complementarity = automatic: pointwise (constrained multiplier "
                                  "nodes on the contact surface: hanging nodes or a coarser "
                                  "multiplier mesh)";
@@ -175,8 +175,8 @@ namespace StabilizedLagrangian
         mpi_communicator,
         *this,
         friction_law,
-        contact_parameters.r_n,
-        contact_parameters.r_t,
+        chosen.r_n,
+        chosen.r_t,
         loops,
         negligible_pressure,
         [this]() { return static_cast<unsigned int>(contact_zones.size()); },

@@ -49,11 +49,14 @@ namespace StabilizedLagrangian
           prm, "Friction law", "Coulomb", "Friction law on the contact boundary.");
     }
 
-    /** @brief Build the friction law chosen in the `Friction law` subsection. */
+    /**
+     * @brief Build the friction law chosen in the `Friction law` subsection of
+     * the current subsection, whose path is @p path (`Contact`, `Contact/Zone <name>`).
+     */
     inline std::unique_ptr<Interface>
-    create(ParameterHandler &prm)
+    create(ParameterHandler &prm, const std::string &path)
     {
-      return Registry::create_from(prm, "Friction law");
+      return Registry::create_from(prm, "Friction law", path);
     }
   } // namespace FrictionLaws
 } // namespace StabilizedLagrangian

@@ -67,14 +67,19 @@ namespace StabilizedLagrangian
        * @param hardening_points (equivalent plastic strain, yield stress)
        * pairs of the traction curve (see HardeningCurve); throws InputError if
        * any of the parameters is out of range
+       * @param section the model's subsection, for messages
        */
       J2Plasticity(const double                                  youngs_modulus,
                    const double                                  poissons_ratio,
                    const Kinematics                              kinematics,
-                   const std::vector<std::pair<double, double>> &hardening_points);
+                   const std::vector<std::pair<double, double>> &hardening_points,
+                   const std::string &section = "Material/J2 plasticity");
 
-      /** @brief Model from its `.prm` subsection (declare_parameters()). */
-      explicit J2Plasticity(const ParameterHandler &prm);
+      /**
+       * @brief Model from its `.prm` subsection (declare_parameters()), whose
+       * path @p section the messages name.
+       */
+      J2Plasticity(const ParameterHandler &prm, const std::string &section);
 
       /**
        * @brief Declare `Young's modulus`, `Poisson's ratio`, `Kinematics` and

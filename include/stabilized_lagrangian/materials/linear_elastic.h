@@ -18,10 +18,15 @@ namespace StabilizedLagrangian
        * @param youngs_modulus E > 0 (MPa)
        * @param poissons_ratio ν in [0, 0.5)
        */
-      LinearElastic(const double youngs_modulus, const double poissons_ratio);
+      LinearElastic(const double       youngs_modulus,
+                    const double       poissons_ratio,
+                    const std::string &section = "Material/linear elastic");
 
-      /** @brief Model from its `.prm` subsection (declare_parameters()). */
-      explicit LinearElastic(const ParameterHandler &prm);
+      /**
+       * @brief Model from its `.prm` subsection (declare_parameters()), whose
+       * path @p section the messages name.
+       */
+      LinearElastic(const ParameterHandler &prm, const std::string &section);
 
       /** @brief Declare `Young's modulus` and `Poisson's ratio`. */
       static void

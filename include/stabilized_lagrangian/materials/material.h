@@ -381,21 +381,11 @@ namespace StabilizedLagrangian
           prm.enter_subsection(material_slot(slot));
           const auto bodies = Utilities::split_string_list(prm.get("Bodies"));
           if (!bodies.empty())
-            try
-              {
-                result.push_back(
-                    BodyMaterial<dim>{material_slot(slot), bodies, Registry<dim>::create(prm)});
-                result.back().parse_volumetric(prm);
-              }
-            catch (const InputError &error)
-              {
-                // the models name their entries from `Material/`: name the slot
-                // the user wrote instead
-                const std::string message = error.what();
-                throw InputError(message.rfind("Material/", 0) == 0
-                                     ? material_slot(slot) + message.substr(8)
-                                     : message);
-              }
+            {
+              result.push_back(BodyMaterial<dim>{
+                  material_slot(slot), bodies, Registry<dim>::create(prm, material_slot(slot))});
+              result.back().parse_volumetric(prm);
+            }
           prm.leave_subsection();
         }
       return result;

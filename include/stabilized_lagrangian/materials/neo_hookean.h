@@ -28,10 +28,15 @@ namespace StabilizedLagrangian
        * @param c10 C10 = μ/2 > 0 (MPa)
        * @param poissons_ratio ν in [0, 0.5)
        */
-      NeoHookean(const double c10, const double poissons_ratio);
+      NeoHookean(const double       c10,
+                 const double       poissons_ratio,
+                 const std::string &section = "Material/neo-Hookean");
 
-      /** @brief Model from its `.prm` subsection (declare_parameters()). */
-      explicit NeoHookean(const ParameterHandler &prm);
+      /**
+       * @brief Model from its `.prm` subsection (declare_parameters()), whose
+       * path @p section the messages name.
+       */
+      NeoHookean(const ParameterHandler &prm, const std::string &section);
 
       /** @brief Declare `C10` and `Poisson's ratio`. */
       static void

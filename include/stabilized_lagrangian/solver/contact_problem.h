@@ -37,6 +37,7 @@
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
@@ -124,9 +125,12 @@ namespace StabilizedLagrangian
      * @brief Build the problem from parsed parameters (declared by
      * Parameters::declare_all<dim>).
      * @param prm the parsed parameters
+     * @param sections the condition subsections @p prm holds (Parameters::parse())
      * @param verbose print the progress to screen (rank 0)
      */
-    ContactProblem(ParameterHandler &prm, const bool verbose = true);
+    ContactProblem(ParameterHandler                    &prm,
+                   const Parameters::ConditionSections &sections,
+                   const bool                           verbose = true);
 
     /**
      * @brief Solve every load step (load_path.cc); returns false if a step could not be solved.
@@ -320,13 +324,14 @@ namespace StabilizedLagrangian
     bool
     weighted_complementarity() const
     {
-      return contact_parameters.complementarity == Parameters::Complementarity::weighted;
+      return chosen.weighted_complementarity();
     }
     /**
      * @brief `Complementarity = automatic`: weighted for two deformable bodies
      * and dual pairs, pointwise against a rigid obstacle and where weighted does
-     * not apply (doc/formulation.md, "Which conditions by default"). The
-     * constrained multiplier nodes are seen by setup_nodal_conditions().
+     * not apply (doc/formulation.md, "Which conditions by default"), into
+     * chosen.complementarity. The constrained multiplier nodes are seen by
+     * setup_nodal_conditions().
      */
     void
     choose_complementarity();
@@ -886,7 +891,7 @@ namespace StabilizedLagrangian
     setup_after_refinement();
 
     // --- setup_checks.cc: checks of the scene before the run: supports, warnings, r_n and r_t ---
-    /** r_n and r_t: the prm values, or the automatic ones for the current mesh (reported). */
+    /** chosen.r_n, chosen.r_t: the prm's, or the automatic ones on this mesh (reported). */
     void
     choose_augmentation_parameters();
     /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
@@ -995,7 +1000,7 @@ namespace StabilizedLagrangian
     is_contact_face(const CellIterator &cell, const unsigned int f) const
     {
       return cell->face(f)->at_boundary() &&
-             contact_parameters.boundary_ids.count(cell->face(f)->boundary_id()) > 0;
+             chosen.contact_boundaries.count(cell->face(f)->boundary_id()) > 0;
     }
     /** Whether face @p f of @p cell lies on Γc or on the master surface of a second body. */
     template <typename CellIterator>
@@ -1004,7 +1009,7 @@ namespace StabilizedLagrangian
     {
       return is_contact_face(cell, f) ||
              (cell->face(f)->at_boundary() &&
-              contact_parameters.master_ids.count(cell->face(f)->boundary_id()) > 0);
+              chosen.master_boundaries.count(cell->face(f)->boundary_id()) > 0);
     }
     /**
      * Call f(dof, i) for each multiplier DoF on a contact face of the
@@ -1560,26 +1565,32 @@ namespace StabilizedLagrangian
     ConditionalOStream pcout;
     TimerOutput        timer;
 
+    // the parsed input, in the order it is read (its first error is the one reported)
+    std::unique_ptr<Geometry::Interface<dim>> geometry;
     /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
-    bool                                axisymmetric = false;
-    Parameters::Contact                 contact_parameters;
-    Parameters::BoundaryConditions<dim> boundary_conditions;
-    Parameters::LoadStepping            load_stepping;
-    Parameters::NonlinearSolver         solver_parameters;
+    const bool                axisymmetric;
+    const Parameters::Contact contact_parameters;
+    /** the boundaries given by name are resolved by the run (resolve_boundaries) */
+    Parameters::BoundaryConditions<dim>  boundary_conditions;
+    const Parameters::LoadStepping       load_stepping;
+    const Parameters::NonlinearSolver    solver_parameters;
+    const Parameters::LinearSolver       linear_solver_parameters;
+    const Parameters::Output             output_parameters;
+    const Parameters::AdaptiveRefinement adaptive_refinement;
+    /** the values chosen from the input, the mesh and the materials (reported, not input) */
+    ChosenParameters chosen;
+    /** the current cycle's output: `Output/Output directory`, or its cycle's subdirectory */
+    std::string output_directory;
     /** the process's memory before the mesh existed (check_memory_for_growth) */
     Utilities::System::MemoryStats memory_at_start;
     /** wall time since the problem was built, for `Load stepping/Wall time limit` */
     Timer run_clock;
     bool  wall_time_limit_reached = false;
     /** why the run must stop rather than cut the load step (empty: it may cut) */
-    std::string                    unrecoverable_failure;
-    Parameters::LinearSolver       linear_solver_parameters;
-    Parameters::AdaptiveRefinement adaptive_refinement;
+    std::string unrecoverable_failure;
     /** `Stopping = adaptive`: the discretisation error estimated at the last check of any loop */
-    EnergyEstimate     last_estimate;
-    Parameters::Output output_parameters;
+    EnergyEstimate last_estimate;
 
-    std::unique_ptr<Geometry::Interface<dim>>  geometry;
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
     /** `Obstacle/Motion`: the rigid obstacle's translation d(t) */
     std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_translation;
