@@ -1,5 +1,6 @@
 #include <deal.II/base/utilities.h>
 
+#include <stabilized_lagrangian/boundary_conditions/interface.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/scene.h>
@@ -210,6 +211,19 @@ namespace StabilizedLagrangian
       }
     } // namespace
 
+    namespace
+    {
+      /** The kinds of `Boundary conditions` subsections: the plug-ins', and those parsed here. */
+      std::vector<std::string>
+      condition_kinds()
+      {
+        std::vector<std::string> kinds = StabilizedLagrangian::BoundaryConditions::kinds();
+        kinds.push_back("Dirichlet");
+        kinds.push_back("Rigid plate");
+        return kinds;
+      }
+    } // namespace
+
     ConditionSections
     condition_sections(const std::string &text)
     {
@@ -242,16 +256,11 @@ namespace StabilizedLagrangian
             {
               std::vector<std::string> *list = nullptr;
               std::string               label;
-              for (auto &[kind, names] : {std::pair<std::string, std::vector<std::string> *>{
-                                              "Dirichlet ", &sections.dirichlet},
-                                          {"Neumann ", &sections.neumann},
-                                          {"Spring ", &sections.spring},
-                                          {"Rigid plate ", &sections.plate},
-                                          {"Point load ", &sections.point_load}})
-                if (name.rfind(kind, 0) == 0)
+              for (const auto &kind : condition_kinds())
+                if (name.rfind(kind + " ", 0) == 0)
                   {
-                    list  = names;
-                    label = Utilities::trim(name.substr(kind.size()));
+                    list  = &sections.conditions[kind];
+                    label = Utilities::trim(name.substr(kind.size() + 1));
                   }
               if (list == nullptr || label.empty())
                 throw InputError("Boundary conditions/" + name +
@@ -276,39 +285,31 @@ namespace StabilizedLagrangian
       return sections;
     }
 
-    namespace
+    template <int dim>
+    void
+    declare_function(ParameterHandler  &prm,
+                     const std::string &unit,
+                     const unsigned int n_components)
     {
-      /**
-       * The entries Functions::ParsedFunction<dim> reads (a vector of
-       * @p n_components components of x, y(, z) and t, dim by default),
-       * documented in a few lines.
-       */
-      template <int dim>
-      void
-      declare_function(ParameterHandler  &prm,
-                       const std::string &unit,
-                       const unsigned int n_components = dim)
-      {
-        const std::string coordinates = dim == 2 ? "x,y,t" : "x,y,z,t";
-        std::string       zeros       = "0";
-        for (unsigned int c = 1; c < n_components; ++c)
-          zeros += "; 0";
-        prm.declare_entry("Function expression",
-                          zeros,
-                          Patterns::Anything(),
-                          std::to_string(n_components) + " components (" + unit +
-                              ") separated by ';', of the coordinates and the time (muparser: "
-                              "+ - * / ^, sin, exp, sqrt, min, max, if(condition, a, b), ...).");
-        prm.declare_entry("Function constants",
-                          "",
-                          Patterns::Anything(),
-                          "Names for values in the expression: 'name=value, ...'.");
-        prm.declare_entry("Variable names",
-                          coordinates,
-                          Patterns::Anything(),
-                          "The names of the coordinates and the time in the expression.");
-      }
-    } // namespace
+      const std::string coordinates = dim == 2 ? "x,y,t" : "x,y,z,t";
+      std::string       zeros       = "0";
+      for (unsigned int c = 1; c < n_components; ++c)
+        zeros += "; 0";
+      prm.declare_entry("Function expression",
+                        zeros,
+                        Patterns::Anything(),
+                        std::to_string(n_components) + " components (" + unit +
+                            ") separated by ';', of the coordinates and the time (muparser: "
+                            "+ - * / ^, sin, exp, sqrt, min, max, if(condition, a, b), ...).");
+      prm.declare_entry("Function constants",
+                        "",
+                        Patterns::Anything(),
+                        "Names for values in the expression: 'name=value, ...'.");
+      prm.declare_entry("Variable names",
+                        coordinates,
+                        Patterns::Anything(),
+                        "The names of the coordinates and the time in the expression.");
+    }
 
     void
     declare_contact_zones(ParameterHandler &prm, const std::vector<std::string> &names)
@@ -330,6 +331,17 @@ namespace StabilizedLagrangian
       prm.leave_subsection();
     }
 
+    namespace
+    {
+      /** The names of the subsections of kind @p kind in @p sections. */
+      std::vector<std::string>
+      names_of(const ConditionSections &sections, const std::string &kind)
+      {
+        const auto names = sections.conditions.find(kind);
+        return names == sections.conditions.end() ? std::vector<std::string>() : names->second;
+      }
+    } // namespace
+
     template <int dim>
     void
     BoundaryConditions<dim>::declare_parameters(ParameterHandler        &prm,
@@ -339,15 +351,10 @@ namespace StabilizedLagrangian
         return prm.subsection_path_exists({"Boundary conditions", section});
       };
       const auto boundary_entry = [&prm](const std::string &what) {
-        prm.declare_entry("Boundary id",
-                          "-1",
-                          Patterns::Anything(),
-                          "Boundary " + what +
-                              ": its id, or the name of a boundary of the mesh (a Gmsh "
-                              "physical group); -1: unused.");
+        StabilizedLagrangian::BoundaryConditions::OnBoundary<dim>::declare_boundary(prm, what);
       };
       prm.enter_subsection("Boundary conditions");
-      for (const auto &name : sections.dirichlet)
+      for (const auto &name : names_of(sections, "Dirichlet"))
         if (!declared("Dirichlet " + name))
           {
             prm.enter_subsection("Dirichlet " + name);
@@ -367,33 +374,7 @@ namespace StabilizedLagrangian
             prm.leave_subsection();
             prm.leave_subsection();
           }
-      for (const auto &name : sections.neumann)
-        if (!declared("Neumann " + name))
-          {
-            prm.enter_subsection("Neumann " + name);
-            boundary_entry("with a prescribed traction (MPa, in the reference configuration)");
-            prm.enter_subsection("Traction");
-            declare_function<dim>(prm, "MPa");
-            prm.leave_subsection();
-            prm.leave_subsection();
-          }
-      for (const auto &name : sections.spring)
-        if (!declared("Spring " + name))
-          {
-            prm.enter_subsection("Spring " + name);
-            boundary_entry("held by springs: the traction -K (u - u_0), per unit reference area");
-            prm.declare_entry("Stiffness",
-                              dim == 2 ? "0, 0" : "0, 0, 0",
-                              Patterns::List(Patterns::Double(0.), dim, dim),
-                              "K_xx, K_yy" + std::string(dim == 3 ? ", K_zz" : "") +
-                                  " (MPa/mm: traction per displacement, >= 0), along the "
-                                  "global axes; 0: that component is free.");
-            prm.enter_subsection("Reference displacement");
-            declare_function<dim>(prm, "mm");
-            prm.leave_subsection();
-            prm.leave_subsection();
-          }
-      for (const auto &name : sections.plate)
+      for (const auto &name : names_of(sections, "Rigid plate"))
         if (!declared("Rigid plate " + name))
           {
             prm.enter_subsection("Rigid plate " + name);
@@ -416,20 +397,6 @@ namespace StabilizedLagrangian
                               Patterns::Anything(),
                               "X_0 (mm): where the force acts and the plate turns about; "
                               "empty: the centroid of the boundary's nodes.");
-            prm.enter_subsection("Force");
-            declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
-            prm.leave_subsection();
-            prm.leave_subsection();
-          }
-      for (const auto &name : sections.point_load)
-        if (!declared("Point load " + name))
-          {
-            prm.enter_subsection("Point load " + name);
-            prm.declare_entry("Point",
-                              "",
-                              Patterns::Anything(),
-                              "Where the force acts: the coordinates of a vertex of the mesh "
-                              "(mm); empty: unused.");
             prm.enter_subsection("Force");
             declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
             prm.leave_subsection();
@@ -553,10 +520,7 @@ namespace StabilizedLagrangian
     {
       dirichlet.clear();
       point_dirichlet.clear();
-      neumann.clear();
-      springs.clear();
       plates.clear();
-      point_loads.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
       };
@@ -571,33 +535,14 @@ namespace StabilizedLagrangian
             boundary_id_or_name(value, "Boundary conditions/" + section + "/Boundary id");
         return std::make_pair(id.value_or(0), id ? "" : value);
       };
-      // the vertex a `Point` entry of the current subsection names, if any
-      // a point entry (`Point` by default), empty for none
       const auto vertex = [&prm](const std::string &section,
                                  const std::string &entry = "Point",
-                                 const std::string &what =
-                                     "a vertex of the mesh") -> std::optional<Point<dim>> {
-        const std::string text = Utilities::trim(prm.get(entry));
-        if (text.empty())
-          return std::nullopt;
-        Point<dim> point;
-        try
-          {
-            const auto values = Utilities::string_to_double(Utilities::split_string_list(text));
-            if (values.size() != dim)
-              throw std::invalid_argument("count");
-            for (unsigned int d = 0; d < dim; ++d)
-              point[d] = values[d];
-          }
-        catch (...)
-          {
-            throw InputError(section + "/" + entry + " = '" + text + "': " + std::to_string(dim) +
-                             " comma-separated coordinates (mm) of " + what + ".");
-          }
-        return point;
+                                 const std::string &what  = "a vertex of the mesh") {
+        return StabilizedLagrangian::BoundaryConditions::parse_point<dim>(
+            prm, section, entry, what);
       };
       prm.enter_subsection("Boundary conditions");
-      for (const auto &name : sections.dirichlet)
+      for (const auto &name : names_of(sections, "Dirichlet"))
         {
           const std::string section = "Dirichlet " + name;
           prm.enter_subsection(section);
@@ -625,43 +570,7 @@ namespace StabilizedLagrangian
                                              "Boundary conditions/" + section});
           prm.leave_subsection();
         }
-      for (const auto &name : sections.neumann)
-        {
-          const std::string section = "Neumann " + name;
-          prm.enter_subsection(section);
-          if (const auto where = boundary(section))
-            neumann.push_back(NeumannCondition<dim>{where->first,
-                                                    where->second,
-                                                    parse_function(section, "Traction"),
-                                                    "Boundary conditions/" + section});
-          prm.leave_subsection();
-        }
-      for (const auto &name : sections.spring)
-        {
-          const std::string section = "Spring " + name;
-          prm.enter_subsection(section);
-          if (const auto where = boundary(section))
-            {
-              const auto values =
-                  Utilities::string_to_double(Utilities::split_string_list(prm.get("Stiffness")));
-              Tensor<1, dim> stiffness;
-              for (unsigned int d = 0; d < dim; ++d)
-                stiffness[d] = values[d];
-              if (stiffness.norm() == 0.)
-                throw InputError("Boundary conditions/" + section +
-                                 "/Stiffness: all zero, so the springs hold nothing; give a "
-                                 "stiffness > 0 (MPa/mm) in at least one axis, or set Boundary "
-                                 "id = -1.");
-              springs.push_back(
-                  SpringCondition<dim>{where->first,
-                                       where->second,
-                                       stiffness,
-                                       parse_function(section, "Reference displacement"),
-                                       "Boundary conditions/" + section});
-            }
-          prm.leave_subsection();
-        }
-      for (const auto &name : sections.plate)
+      for (const auto &name : names_of(sections, "Rigid plate"))
         {
           const std::string section = "Rigid plate " + name;
           prm.enter_subsection(section);
@@ -691,15 +600,6 @@ namespace StabilizedLagrangian
                   name,
                   "Boundary conditions/" + section});
             }
-          prm.leave_subsection();
-        }
-      for (const auto &name : sections.point_load)
-        {
-          const std::string section = "Boundary conditions/Point load " + name;
-          prm.enter_subsection("Point load " + name);
-          if (const auto point = vertex(section))
-            point_loads.push_back(
-                PointLoad<dim>{*point, parse_function("Point load " + name, "Force"), section});
           prm.leave_subsection();
         }
       prm.leave_subsection();
@@ -1162,7 +1062,11 @@ namespace StabilizedLagrangian
       ConditionSections
       template_sections()
       {
-        return ConditionSections{{"1"}, {"1"}, {"1"}, {"1"}, {"1"}, {"1"}};
+        ConditionSections sections;
+        for (const auto &kind : condition_kinds())
+          sections.conditions[kind] = {"1"};
+        sections.zones = {"1"};
+        return sections;
       }
 
       /**
@@ -1184,25 +1088,27 @@ namespace StabilizedLagrangian
         return key;
       }
 
+      /** The names of @p names and @p more, each once, in ParameterHandler's order. */
+      std::vector<std::string>
+      merged(std::vector<std::string> names, const std::vector<std::string> &more)
+      {
+        for (const auto &name : more)
+          if (std::find(names.begin(), names.end(), name) == names.end())
+            names.push_back(name);
+        std::sort(names.begin(), names.end(), [](const auto &a, const auto &b) {
+          return subsection_key(a) < subsection_key(b);
+        });
+        return names;
+      }
+
       /** The sections of @p text and the template's, each once, in ParameterHandler's order. */
       ConditionSections
       with_template(const ConditionSections &text)
       {
         ConditionSections result = template_sections();
-        for (auto [names, more] : {std::pair{&result.dirichlet, &text.dirichlet},
-                                   {&result.neumann, &text.neumann},
-                                   {&result.spring, &text.spring},
-                                   {&result.plate, &text.plate},
-                                   {&result.point_load, &text.point_load},
-                                   {&result.zones, &text.zones}})
-          {
-            for (const auto &name : *more)
-              if (std::find(names->begin(), names->end(), name) == names->end())
-                names->push_back(name);
-            std::sort(names->begin(), names->end(), [](const auto &a, const auto &b) {
-              return subsection_key(a) < subsection_key(b);
-            });
-          }
+        for (const auto &[kind, names] : text.conditions)
+          result.conditions[kind] = merged(result.conditions[kind], names);
+        result.zones = merged(result.zones, text.zones);
         return result;
       }
     } // namespace
@@ -1244,6 +1150,7 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
       BoundaryConditions<dim>::declare_parameters(prm, template_sections());
+      StabilizedLagrangian::BoundaryConditions::declare_parameters<dim>(prm, template_sections());
       declare_contact_zones(prm, template_sections().zones);
       LoadStepping::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
@@ -1420,6 +1327,7 @@ namespace StabilizedLagrangian
       const ExpandedFile      content  = is_file ? read_file(text) : ExpandedFile{text, {}};
       const ConditionSections sections = condition_sections(content.text);
       BoundaryConditions<dim>::declare_parameters(prm, sections);
+      StabilizedLagrangian::BoundaryConditions::declare_parameters<dim>(prm, sections);
       declare_contact_zones(prm, sections.zones);
       try
         {
@@ -1463,6 +1371,10 @@ namespace StabilizedLagrangian
     parse_function<2>(ParameterHandler &, const std::string &, const std::string &, unsigned int);
     template std::shared_ptr<BoundaryFunction<3>>
     parse_function<3>(ParameterHandler &, const std::string &, const std::string &, unsigned int);
+    template void
+    declare_function<2>(ParameterHandler &, const std::string &, unsigned int);
+    template void
+    declare_function<3>(ParameterHandler &, const std::string &, unsigned int);
     template class BoundaryFunction<2>;
     template class BoundaryFunction<3>;
     template struct BoundaryConditions<2>;

@@ -7,6 +7,7 @@
 
 #include <deal.II/fe/component_mask.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -141,6 +142,17 @@ namespace StabilizedLagrangian
                    const std::string &name,
                    unsigned int       n_components = dim);
 
+    /**
+     * @brief Declare in the current subsection the entries of a function
+     * (@p n_components components of the coordinates and t, dim by default;
+     * values in @p unit), which parse_function() reads.
+     */
+    template <int dim>
+    void
+    declare_function(ParameterHandler  &prm,
+                     const std::string &unit,
+                     unsigned int       n_components = dim);
+
     /** @brief A prescribed displacement on some components of a boundary. */
     template <int dim> struct DirichletCondition
     {
@@ -149,28 +161,6 @@ namespace StabilizedLagrangian
       ComponentMask components;
       std::shared_ptr<BoundaryFunction<dim>> displacement;
       std::string section; ///< "Boundary conditions/Dirichlet <name>", for messages
-    };
-
-    /** @brief A prescribed traction (MPa) on a boundary. */
-    template <int dim> struct NeumannCondition
-    {
-      types::boundary_id boundary_id;
-      std::string boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
-      std::shared_ptr<BoundaryFunction<dim>> traction;
-      std::string                            section; ///< "Boundary conditions/Neumann <name>"
-    };
-
-    /**
-     * @brief An elastic support (a Robin condition): the traction
-     * t = −K (u − u_0) on a boundary, K diagonal in the global axes.
-     */
-    template <int dim> struct SpringCondition
-    {
-      types::boundary_id boundary_id;
-      std::string    boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
-      Tensor<1, dim> stiffness;     ///< K_xx, K_yy (, K_zz), MPa/mm: traction per displacement
-      std::shared_ptr<BoundaryFunction<dim>> reference; ///< u_0(x, t), mm
-      std::string                            section;   ///< "Boundary conditions/Spring <name>"
     };
 
     /**
@@ -204,14 +194,6 @@ namespace StabilizedLagrangian
       std::string                            section; ///< "Boundary conditions/Dirichlet <name>"
     };
 
-    /** @brief A force F(t) on one node of the mesh, the vertex at a given point. */
-    template <int dim> struct PointLoad
-    {
-      Point<dim>                             point;   ///< where: a vertex of the mesh (mm)
-      std::shared_ptr<BoundaryFunction<dim>> force;   ///< F(t), N (N/mm of thickness in 2D)
-      std::string                            section; ///< "Boundary conditions/Point load <name>"
-    };
-
     /**
      * @brief The condition subsections of `Boundary conditions` a parameter
      * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`,
@@ -220,7 +202,8 @@ namespace StabilizedLagrangian
      */
     struct ConditionSections
     {
-      std::vector<std::string> dirichlet, neumann, spring, plate, point_load;
+      /** per kind (`Dirichlet`, `Neumann`, ...), the names of its subsections */
+      std::map<std::string, std::vector<std::string>> conditions;
       /** the contact zones: `Contact/Zone <name>` */
       std::vector<std::string> zones;
     };
@@ -250,10 +233,7 @@ namespace StabilizedLagrangian
       std::vector<DirichletCondition<dim>> dirichlet;
       /** the `Dirichlet <name>` subsections with a `Point`: one node each */
       std::vector<PointDirichletCondition<dim>> point_dirichlet;
-      std::vector<NeumannCondition<dim>>        neumann;
-      std::vector<SpringCondition<dim>>         springs;
       std::vector<RigidPlateCondition<dim>>     plates;
-      std::vector<PointLoad<dim>>               point_loads;
 
       /**
        * Declare the subsections @p sections names (those already declared

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace StabilizedLagrangian
 {
@@ -36,8 +37,11 @@ namespace StabilizedLagrangian
   {
   public:
     using Declare = std::function<void(dealii::ParameterHandler &)>;
-    /** builds the plug-in from its subsection and that subsection's path */
-    using Create = std::function<std::unique_ptr<InterfaceType>(const dealii::ParameterHandler &,
+    /**
+     * builds the plug-in from its subsection (the current one, which it may
+     * enter further) and that subsection's path
+     */
+    using Create = std::function<std::unique_ptr<InterfaceType>(dealii::ParameterHandler &,
                                                                 const std::string &)>;
 
     /**
@@ -51,6 +55,47 @@ namespace StabilizedLagrangian
     {
       entries()[name] = Entry{description, declare, create};
       return true;
+    }
+
+    /**
+     * @brief The registered names, in alphabetical order.
+     */
+    static std::vector<std::string>
+    names()
+    {
+      std::vector<std::string> result;
+      for (const auto &entry : entries())
+        result.push_back(entry.first);
+      return result;
+    }
+
+    /**
+     * @brief The description the plug-in @p name was registered with.
+     */
+    static const std::string &
+    description(const std::string &name)
+    {
+      return entry(name).description;
+    }
+
+    /**
+     * @brief Declare the parameters of the plug-in @p name in the current
+     * subsection (for plug-ins chosen by a subsection's name rather than a
+     * `Model` entry, any number of times: `Boundary conditions/Neumann top`).
+     */
+    static void
+    declare_parameters_here(const std::string &name, dealii::ParameterHandler &prm)
+    {
+      entry(name).declare(prm);
+    }
+
+    /**
+     * @brief Build the plug-in @p name from the current subsection, whose path is @p path.
+     */
+    static std::unique_ptr<InterfaceType>
+    create_here(const std::string &name, dealii::ParameterHandler &prm, const std::string &path)
+    {
+      return entry(name).create(prm, path);
     }
 
     /**
@@ -142,11 +187,9 @@ namespace StabilizedLagrangian
     static std::unique_ptr<InterfaceType>
     create(const std::string &name, dealii::ParameterHandler &prm, const std::string &path)
     {
-      const auto it = entries().find(name);
-      AssertThrow(it != entries().end(),
-                  dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
+      const Entry &model_entry = entry(name);
       prm.enter_subsection(name);
-      std::unique_ptr<InterfaceType> model = it->second.create(prm, subsection_path(path, name));
+      std::unique_ptr<InterfaceType> model = model_entry.create(prm, subsection_path(path, name));
       prm.leave_subsection();
       return model;
     }
@@ -157,10 +200,8 @@ namespace StabilizedLagrangian
     static std::unique_ptr<InterfaceType>
     create_without_parameters(const std::string &name)
     {
-      const auto it = entries().find(name);
-      AssertThrow(it != entries().end(),
-                  dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
-      return it->second.create(dealii::ParameterHandler(), name);
+      dealii::ParameterHandler none;
+      return entry(name).create(none, name);
     }
 
   private:
@@ -176,6 +217,15 @@ namespace StabilizedLagrangian
     {
       static std::map<std::string, Entry> map;
       return map;
+    }
+
+    static const Entry &
+    entry(const std::string &name)
+    {
+      const auto it = entries().find(name);
+      AssertThrow(it != entries().end(),
+                  dealii::ExcMessage("Unknown model '" + name + "'; allowed: " + pattern()));
+      return it->second;
     }
   };
 
@@ -196,8 +246,8 @@ namespace StabilizedLagrangian
           name,
           description,
           &PluginType::declare_parameters,
-          [](const dealii::ParameterHandler &prm,
-             const std::string              &section) -> std::unique_ptr<InterfaceType> {
+          [](dealii::ParameterHandler &prm,
+             const std::string        &section) -> std::unique_ptr<InterfaceType> {
             return std::make_unique<PluginType>(prm, section);
           });
     }
@@ -228,8 +278,7 @@ namespace StabilizedLagrangian
           name,
           description,
           [](dealii::ParameterHandler &) {},
-          [=](const dealii::ParameterHandler &,
-              const std::string &) -> std::unique_ptr<InterfaceType> {
+          [=](dealii::ParameterHandler &, const std::string &) -> std::unique_ptr<InterfaceType> {
             return std::make_unique<PluginType>(constructor_arguments...);
           });
     }

@@ -59,10 +59,8 @@ namespace StabilizedLagrangian
     if (loops.pairs_before_assembly())
       update_pairings(false);
     assemble_volume(assemble_matrix);
-    for (const auto &bc : boundary_conditions.neumann)
-      bc.traction->check_finite(mpi_communicator);
-    for (const auto &bc : boundary_conditions.springs)
-      bc.reference->check_finite(mpi_communicator);
+    for (const auto &condition : boundary_conditions)
+      condition->check_finite(mpi_communicator);
     obstacle_translation->check_finite(mpi_communicator);
     if (obstacle_rotation)
       obstacle_rotation->check_finite(mpi_communicator);
@@ -293,76 +291,28 @@ namespace StabilizedLagrangian
       Vector<double>                                       &cell_external,
       const bool                                            assemble_matrix)
   {
-    bool loaded = false;
+    const BoundaryConditions::Problem<dim> problem = boundary_view();
+    bool                                   loaded  = false;
     for (const unsigned int f : cell->face_indices())
       {
         if (!cell->face(f)->at_boundary())
           continue;
         const types::boundary_id id = cell->face(f)->boundary_id();
-        for (const auto &bc : boundary_conditions.neumann)
-          if (id == bc.boundary_id)
+        for (const auto &condition : boundary_conditions)
+          if (condition->acts_on_faces_of(id))
             {
               if (!loaded)
                 cell_external = cell_rhs;
               loaded = true;
-              add_neumann_contribution(cell, f, *bc.traction, face_values, cell_rhs);
-            }
-        for (const auto &bc : boundary_conditions.springs)
-          if (id == bc.boundary_id)
-            {
-              if (!loaded)
-                cell_external = cell_rhs;
-              loaded = true;
-              add_spring_contribution(
-                  cell, f, bc, coefficients, face_values, cell_matrix, cell_rhs, assemble_matrix);
+              condition->assemble_face(
+                  problem,
+                  {cell, f, coefficients, face_values, cell_matrix, cell_rhs, assemble_matrix});
             }
       }
     if (loaded)
       {
         cell_external -= cell_rhs;
         hanging_constraints.distribute_local_to_global(cell_external, dofs, external_force);
-      }
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::add_spring_contribution(
-      const typename DoFHandler<dim>::active_cell_iterator &cell,
-      const unsigned int                                    face_no,
-      const Parameters::SpringCondition<dim>               &spring,
-      const std::vector<double>                            &coefficients,
-      FEFaceValues<dim>                                    &fe_face_values,
-      FullMatrix<double>                                   &cell_matrix,
-      Vector<double>                                       &cell_rhs,
-      const bool                                            assemble_matrix) const
-  {
-    // the traction t = −K (u − u_0): its work −∫ t·φ_i in the residual and
-    // ∫ K φ_i φ_j (same component) in the Jacobian
-    fe_face_values.reinit(cell, face_no);
-    spring.reference->set_time(time);
-    const unsigned int n_dofs = fe_u->n_dofs_per_cell();
-    Vector<double>     u_0(dim);
-    for (unsigned int q = 0; q < fe_face_values.n_quadrature_points; ++q)
-      {
-        spring.reference->vector_value(fe_face_values.quadrature_point(q), u_0);
-        Tensor<1, dim> u;
-        for (unsigned int j = 0; j < n_dofs; ++j)
-          u[fe_u->system_to_component_index(j).first] +=
-              coefficients[j] * fe_face_values.shape_value(j, q);
-        const double JxW =
-            fe_face_values.JxW(q) * radial_weight(fe_face_values.quadrature_point(q));
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          {
-            const unsigned int c = fe_u->system_to_component_index(i).first;
-            if (spring.stiffness[c] == 0.)
-              continue;
-            const double k_phi = spring.stiffness[c] * fe_face_values.shape_value(i, q) * JxW;
-            cell_rhs(i) += k_phi * (u[c] - u_0(c));
-            if (assemble_matrix)
-              for (unsigned int j = 0; j < n_dofs; ++j)
-                if (fe_u->system_to_component_index(j).first == c)
-                  cell_matrix(i, j) += k_phi * fe_face_values.shape_value(j, q);
-          }
       }
   }
 
@@ -375,9 +325,9 @@ namespace StabilizedLagrangian
     // no moment), i.e. A_R⁻ᵀ g on the reference DoFs, into whose rows the
     // constraints sum the tied DoFs' equations
     Vector<double> force(dim);
-    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
       {
-        auto              &plate  = boundary_conditions.plates[p];
+        auto              &plate  = dirichlet_and_plates.plates[p];
         const PlateMotion &motion = plate_motions[p];
         plate.force->set_time(time);
         plate.force->vector_value(Point<dim>(), force);
@@ -394,49 +344,17 @@ namespace StabilizedLagrangian
               external_force(motion.dofs[k]) += on_reference[k];
             }
       }
-    // the point loads at their vertices' DoFs, through the constraints (a
-    // prescribed component takes the load into its reaction, a plate's tied
-    // one passes it to the plate)
-    for (unsigned int p = 0; p < boundary_conditions.point_loads.size(); ++p)
-      {
-        auto &load = boundary_conditions.point_loads[p];
-        load.force->set_time(time);
-        load.force->vector_value(Point<dim>(), force);
-        load.force->check_finite(mpi_communicator);
-        if (!locally_owned.is_element(point_load_dofs[p][0]))
-          continue;
-        const std::vector<types::global_dof_index> dofs(point_load_dofs[p].begin(),
-                                                        point_load_dofs[p].end());
-        Vector<double>                             load_rhs(dim);
-        for (unsigned int c = 0; c < dim; ++c)
-          load_rhs(c) = -force(c);
-        newton_constraints.distribute_local_to_global(load_rhs, dofs, system_rhs);
-        for (unsigned int c = 0; c < dim; ++c)
-          external_force(dofs[c]) += force(c);
-      }
+    // the point loads at their vertices' DoFs
+    const BoundaryConditions::Problem<dim> problem = boundary_view();
+    for (const auto &condition : boundary_conditions)
+      condition->assemble_global(problem, newton_constraints, system_rhs, external_force);
   }
 
   template <int dim>
-  void
-  ContactProblem<dim>::add_neumann_contribution(
-      const typename DoFHandler<dim>::active_cell_iterator &cell,
-      const unsigned int                                    face_no,
-      Parameters::BoundaryFunction<dim>                    &traction,
-      FEFaceValues<dim>                                    &fe_face_values,
-      Vector<double>                                       &cell_rhs) const
+  BoundaryConditions::Problem<dim>
+  ContactProblem<dim>::boundary_view() const
   {
-    fe_face_values.reinit(cell, face_no);
-    traction.set_time(time);
-    Vector<double> t(dim);
-    for (unsigned int q = 0; q < fe_face_values.n_quadrature_points; ++q)
-      {
-        const Point<dim> &x = fe_face_values.quadrature_point(q);
-        traction.vector_value(x, t);
-        for (unsigned int i = 0; i < fe_u->n_dofs_per_cell(); ++i)
-          cell_rhs(i) -= t(fe_u->system_to_component_index(i).first) *
-                         fe_face_values.shape_value(i, q) * fe_face_values.JxW(q) *
-                         radial_weight(x);
-      }
+    return {dof_handler_u, *fe_u, mpi_communicator, locally_owned, axisymmetric, time};
   }
 
   template <int dim>
@@ -561,12 +479,6 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::assemble_volume(bool);                                       \
   template void ContactProblem<dim>::compute_volume_fields(const TrilinosWrappers::MPI::Vector &) \
       const;                                                                                      \
-  template void ContactProblem<dim>::add_neumann_contribution(                                    \
-      const typename DoFHandler<dim>::active_cell_iterator &,                                     \
-      unsigned int,                                                                               \
-      Parameters::BoundaryFunction<dim> &,                                                        \
-      FEFaceValues<dim> &,                                                                        \
-      Vector<double> &) const;                                                                    \
   template void ContactProblem<dim>::assemble_contact(bool);                                      \
   template void ContactProblem<dim>::add_plate_forces();                                          \
   template void ContactProblem<dim>::add_boundary_loads(                                          \
@@ -578,20 +490,12 @@ namespace StabilizedLagrangian
       Vector<double> &,                                                                           \
       Vector<double> &,                                                                           \
       bool);                                                                                      \
-  template void ContactProblem<dim>::add_spring_contribution(                                     \
-      const typename DoFHandler<dim>::active_cell_iterator &,                                     \
-      unsigned int,                                                                               \
-      const Parameters::SpringCondition<dim> &,                                                   \
-      const std::vector<double> &,                                                                \
-      FEFaceValues<dim> &,                                                                        \
-      FullMatrix<double> &,                                                                       \
-      Vector<double> &,                                                                           \
-      bool) const;                                                                                \
-  template void ContactProblem<dim>::add_to_global_system(                                        \
-      const FullMatrix<double> &,                                                                 \
-      Vector<double> &,                                                                           \
-      const std::vector<types::global_dof_index> &,                                               \
-      bool);                                                                                      \
+  template BoundaryConditions::Problem<dim> ContactProblem<dim>::boundary_view() const;           \
+  template void                             ContactProblem<dim>::add_to_global_system(            \
+      const FullMatrix<double> &,                                     \
+      Vector<double> &,                                               \
+      const std::vector<types::global_dof_index> &,                   \
+      bool);                                                          \
   template double         ContactProblem<dim>::residual_norm() const;                             \
   template ScaledResidual ContactProblem<dim>::scaled_residual() const;
 

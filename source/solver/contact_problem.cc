@@ -51,7 +51,8 @@ namespace StabilizedLagrangian
       , geometry(Geometry::create<dim>(prm))
       , axisymmetric(parsed_axisymmetric<dim>(prm))
       , contact_parameters(parsed<Parameters::Contact>(prm))
-      , boundary_conditions(parsed<Parameters::BoundaryConditions<dim>>(prm, sections))
+      , dirichlet_and_plates(parsed<Parameters::BoundaryConditions<dim>>(prm, sections))
+      , boundary_conditions(BoundaryConditions::create<dim>(prm, sections))
       , load_stepping(parsed<Parameters::LoadStepping>(prm))
       , solver_parameters(parsed<Parameters::NonlinearSolver>(prm))
       , linear_solver_parameters(parsed<Parameters::LinearSolver>(prm))
@@ -395,13 +396,12 @@ namespace StabilizedLagrangian
             throw InputError(message.str());
           }
       }
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       require_boundary(bc.boundary_id, bc.section + "/Boundary id");
-    for (const auto &bc : boundary_conditions.neumann)
-      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
-    for (const auto &bc : boundary_conditions.springs)
-      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
-    for (const auto &bc : boundary_conditions.plates)
+    for (const auto &condition : boundary_conditions)
+      for (const auto id : condition->boundaries())
+        require_boundary(id, condition->section() + "/Boundary id");
+    for (const auto &bc : dirichlet_and_plates.plates)
       require_boundary(bc.boundary_id, bc.section + "/Boundary id");
   }
 
@@ -451,15 +451,13 @@ namespace StabilizedLagrangian
       if (!bc.boundary_name.empty())
         bc.boundary_id = resolve(bc.boundary_name, bc.section + "/Boundary id");
     };
-    std::for_each(boundary_conditions.dirichlet.begin(),
-                  boundary_conditions.dirichlet.end(),
+    std::for_each(dirichlet_and_plates.dirichlet.begin(),
+                  dirichlet_and_plates.dirichlet.end(),
                   resolve_condition);
+    for (const auto &condition : boundary_conditions)
+      condition->resolve_boundaries(resolve);
     std::for_each(
-        boundary_conditions.neumann.begin(), boundary_conditions.neumann.end(), resolve_condition);
-    std::for_each(
-        boundary_conditions.springs.begin(), boundary_conditions.springs.end(), resolve_condition);
-    std::for_each(
-        boundary_conditions.plates.begin(), boundary_conditions.plates.end(), resolve_condition);
+        dirichlet_and_plates.plates.begin(), dirichlet_and_plates.plates.end(), resolve_condition);
 
     for (const auto id : chosen.contact_boundaries)
       require_boundary(id, "Contact/Contact boundary ids");

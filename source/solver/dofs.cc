@@ -350,7 +350,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_homogeneous_dirichlet_constraints(
       AffineConstraints<double> &constraints) const
   {
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       VectorTools::interpolate_boundary_values(dof_handler_u,
                                                bc.boundary_id,
                                                Functions::ZeroFunction<dim>(dim),
@@ -358,7 +358,7 @@ namespace StabilizedLagrangian
                                                bc.components);
     for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
       for (unsigned int c = 0; c < dim; ++c)
-        if (boundary_conditions.point_dirichlet[p].components[c] &&
+        if (dirichlet_and_plates.point_dirichlet[p].components[c] &&
             constraints.can_store_line(point_dirichlet_dofs[p][c]) &&
             !constraints.is_constrained(point_dirichlet_dofs[p][c]))
           constraints.add_line(point_dirichlet_dofs[p][c]);
@@ -443,7 +443,7 @@ namespace StabilizedLagrangian
                                           const bool         with_ghosts,
                                           const Function    &f) const
   {
-    const auto                          &plate = boundary_conditions.plates[p];
+    const auto                          &plate = dirichlet_and_plates.plates[p];
     std::vector<types::global_dof_index> dofs(fe_u->n_dofs_per_cell());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned() || (with_ghosts && cell->is_ghost()))
@@ -471,15 +471,15 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::find_plate_dofs()
   {
     plate_motions.clear();
-    if (boundary_conditions.plates.empty())
+    if (dirichlet_and_plates.plates.empty())
       return;
     const IndexSet hanging     = DoFTools::extract_hanging_node_dofs(dof_handler_u);
     const auto     on_boundary = [&](const types::boundary_id id, const unsigned int c) {
       return boundary_component_dofs(dof_handler_u, id, c);
     };
-    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
       {
-        const auto &plate = boundary_conditions.plates[p];
+        const auto &plate = dirichlet_and_plates.plates[p];
         if (plate.free_rotation && axisymmetric)
           throw InputError(plate.section +
                            "/Rotation = free: an axisymmetric model has no rotation to free; "
@@ -488,7 +488,7 @@ namespace StabilizedLagrangian
           if (plate.components[c])
             {
               const IndexSet tied = on_boundary(plate.boundary_id, c);
-              for (const auto &bc : boundary_conditions.dirichlet)
+              for (const auto &bc : dirichlet_and_plates.dirichlet)
                 if (bc.components[c])
                   {
                     const bool shared =
@@ -503,7 +503,7 @@ namespace StabilizedLagrangian
               // motion is its reference DoFs, which that node cannot follow twice)
               for (unsigned int q = 0; q < p; ++q)
                 {
-                  const auto &other = boundary_conditions.plates[q];
+                  const auto &other = dirichlet_and_plates.plates[q];
                   const bool  shared =
                       other.components[c] &&
                       !(tied & on_boundary(other.boundary_id, c) & locally_owned_u).is_empty();
@@ -608,24 +608,26 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::find_point_dofs()
   {
-    point_load_dofs.clear();
     point_dirichlet_dofs.clear();
-    for (const auto &load : boundary_conditions.point_loads)
-      point_load_dofs.push_back(vertex_dofs(load.point, load.section));
-    for (const auto &bc : boundary_conditions.point_dirichlet)
+    for (const auto &condition : boundary_conditions)
+      condition->find_dofs(boundary_view(),
+                           [this](const Point<dim> &point, const std::string &section) {
+                             return vertex_dofs(point, section);
+                           });
+    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
       point_dirichlet_dofs.push_back(vertex_dofs(bc.point, bc.section));
     // a node held by a point condition and tied to a plate would hold the
     // plate by that node alone: the plate's load would go partly into the
     // point's reaction
-    for (unsigned int p = 0; p < boundary_conditions.point_dirichlet.size(); ++p)
-      for (const auto &plate : boundary_conditions.plates)
+    for (unsigned int p = 0; p < dirichlet_and_plates.point_dirichlet.size(); ++p)
+      for (const auto &plate : dirichlet_and_plates.plates)
         for (unsigned int c = 0; c < dim; ++c)
-          if (boundary_conditions.point_dirichlet[p].components[c] && plate.components[c])
+          if (dirichlet_and_plates.point_dirichlet[p].components[c] && plate.components[c])
             {
               const bool shared = boundary_component_dofs(dof_handler_u, plate.boundary_id, c)
                                       .is_element(point_dirichlet_dofs[p][c]);
               if (Utilities::MPI::logical_or(shared, mpi_communicator))
-                throw InputError(boundary_conditions.point_dirichlet[p].section +
+                throw InputError(dirichlet_and_plates.point_dirichlet[p].section +
                                  ": its point is a node of " + plate.section + " in component " +
                                  "xyz"[c] +
                                  ", which would hold the plate by that node and take part of "

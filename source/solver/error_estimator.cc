@@ -351,12 +351,12 @@ namespace StabilizedLagrangian
       return;
     // the prescribed components take any traction: the reactions
     std::vector<bool> free(dim, true);
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       if (bc.boundary_id == id)
         for (unsigned int d = 0; d < dim; ++d)
           free[d] = free[d] && !bc.components[d];
     // a rigid plate's tied components take the plate's distributed reaction
-    for (const auto &bc : boundary_conditions.plates)
+    for (const auto &bc : dirichlet_and_plates.plates)
       if (bc.boundary_id == id)
         for (unsigned int d = 0; d < dim; ++d)
           free[d] = free[d] && !bc.components[d];
@@ -367,28 +367,15 @@ namespace StabilizedLagrangian
     std::vector<Tensor<1, dim>> values(face_values.n_quadrature_points);
     face_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, gradients);
     face_values[FEValuesExtractors::Vector(0)].get_function_values(u, values);
-    Vector<double> prescribed(dim), load(dim);
-    double         residual = 0.;
+    const BoundaryConditions::Problem<dim> problem = boundary_view();
+    Vector<double>                         load(dim);
+    double                                 residual = 0.;
     for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
       {
         const Point<dim> &x = face_values.quadrature_point(q);
         load                = 0.;
-        for (auto &bc : boundary_conditions.neumann)
-          if (bc.boundary_id == id)
-            {
-              bc.traction->set_time(time);
-              bc.traction->vector_value(x, prescribed);
-              load += prescribed;
-            }
-        // a spring's traction −K (u_h − u_0)
-        for (auto &bc : boundary_conditions.springs)
-          if (bc.boundary_id == id)
-            {
-              bc.reference->set_time(time);
-              bc.reference->vector_value(x, prescribed);
-              for (unsigned int d = 0; d < dim; ++d)
-                load(d) -= bc.stiffness[d] * (values[q][d] - prescribed(d));
-            }
+        for (const auto &condition : boundary_conditions)
+          condition->add_boundary_load(problem, id, x, values[q], load);
         const Tensor<1, dim> traction =
             stress_at(cell, gradients[q], x, hoop_strain(x, values[q], gradients[q])) *
             face_values.normal_vector(q);

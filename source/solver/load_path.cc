@@ -609,7 +609,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::apply_dirichlet_values(const double t)
   {
     std::map<types::global_dof_index, double> values;
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       {
         bc.displacement->set_time(t);
         VectorTools::interpolate_boundary_values(
@@ -617,9 +617,9 @@ namespace StabilizedLagrangian
         bc.displacement->check_finite(mpi_communicator);
       }
     Vector<double> at_point(dim);
-    for (unsigned int p = 0; p < boundary_conditions.point_dirichlet.size(); ++p)
+    for (unsigned int p = 0; p < dirichlet_and_plates.point_dirichlet.size(); ++p)
       {
-        const auto &bc = boundary_conditions.point_dirichlet[p];
+        const auto &bc = dirichlet_and_plates.point_dirichlet[p];
         bc.displacement->set_time(t);
         bc.displacement->vector_value(bc.point, at_point);
         for (unsigned int c = 0; c < dim; ++c)

@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace StabilizedLagrangian
@@ -58,10 +59,10 @@ namespace StabilizedLagrangian
       if (std::find(ids.begin(), ids.end(), id) == ids.end())
         ids.push_back(id);
     };
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       add(bc.boundary_id);
-    for (const auto &bc : boundary_conditions.springs)
-      add(bc.boundary_id);
+    for (const auto &condition : boundary_conditions)
+      condition->add_supported_boundaries(ids);
     return ids;
   }
 
@@ -71,9 +72,9 @@ namespace StabilizedLagrangian
   {
     StatisticsWriter::Supports supports;
     supports.reaction_boundaries = supported_boundaries();
-    for (const auto &bc : boundary_conditions.point_dirichlet)
+    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
       supports.reaction_points.push_back(bc.name);
-    for (const auto &plate : boundary_conditions.plates)
+    for (const auto &plate : dirichlet_and_plates.plates)
       {
         supports.plates.push_back(plate.name);
         supports.plate_rotations.push_back(plate.free_rotation ? (dim == 2 ? 1 : 3) : 0);
@@ -88,15 +89,15 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
   {
-    stats.plate_displacements.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
-    stats.plate_rotations.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
-    stats.plate_forces.assign(boundary_conditions.plates.size(), {{0., 0., 0.}});
+    stats.plate_displacements.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
+    stats.plate_rotations.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
+    stats.plate_forces.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
     Vector<double> force(dim);
-    for (unsigned int p = 0; p < boundary_conditions.plates.size(); ++p)
+    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
       {
         const PlateMotion &motion = plate_motions[p];
-        boundary_conditions.plates[p].force->set_time(time);
-        boundary_conditions.plates[p].force->vector_value(Point<dim>(), force);
+        dirichlet_and_plates.plates[p].force->set_time(time);
+        dirichlet_and_plates.plates[p].force->vector_value(Point<dim>(), force);
         // the parameters q = A_R⁻¹ u_R: U, and θ scaled by the plate's size
         Vector<double> reference(motion.modes.size()), q(motion.modes.size());
         for (unsigned int k = 0; k < motion.modes.size(); ++k)
@@ -118,7 +119,7 @@ namespace StabilizedLagrangian
     const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());
     IndexSet                              claimed(dof_handler_u.n_dofs());
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       for (unsigned int c = 0; c < dim; ++c)
         if (bc.components[c])
           {
@@ -133,38 +134,21 @@ namespace StabilizedLagrangian
             for (const auto i : dofs)
               reactions[b][c] += internal_force(i) - external_force(i) + contact_residual(i);
           }
-    // the springs' force on the body, ∫ −K (u − u_0)
-    if (!boundary_conditions.springs.empty())
-      {
-        const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
-        FEFaceValues<dim>                   face_values(*fe_u,
-                                      face_gauss(fe_pair->displacement_degree() + 1),
-                                      update_values | update_quadrature_points | update_JxW_values);
-        std::vector<Tensor<1, dim>>         values(face_values.n_quadrature_points);
-        Vector<double>                      u_0(dim);
-        for (const auto &bc : boundary_conditions.springs)
-          {
-            bc.reference->set_time(time);
-            const unsigned int b = std::find(ids.begin(), ids.end(), bc.boundary_id) - ids.begin();
-            for (const auto &cell : dof_handler_u.active_cell_iterators())
-              if (cell->is_locally_owned())
-                for (const unsigned int f : cell->face_indices())
-                  if (cell->face(f)->at_boundary() &&
-                      cell->face(f)->boundary_id() == bc.boundary_id)
-                    {
-                      face_values.reinit(cell, f);
-                      face_values[FEValuesExtractors::Vector(0)].get_function_values(u, values);
-                      for (unsigned int q = 0; q < values.size(); ++q)
-                        {
-                          bc.reference->vector_value(face_values.quadrature_point(q), u_0);
-                          for (unsigned int d = 0; d < dim; ++d)
-                            reactions[b][d] -= bc.stiffness[d] * (values[q][d] - u_0(d)) *
-                                               face_values.JxW(q) *
-                                               radial_weight(face_values.quadrature_point(q));
-                        }
-                    }
-          }
-      }
+    // the springs' force on the body
+    std::optional<TrilinosWrappers::MPI::Vector> u;
+    const Quadrature<dim - 1> face_quadrature = face_gauss(fe_pair->displacement_degree() + 1);
+    const BoundaryConditions::ReactionInputs<dim> inputs{
+        internal_force,
+        external_force,
+        contact_residual,
+        [&]() -> const TrilinosWrappers::MPI::Vector & {
+          if (!u)
+            u = ghosted_displacement();
+          return *u;
+        },
+        face_quadrature};
+    for (const auto &condition : boundary_conditions)
+      condition->add_reactions(boundary_view(), inputs, ids, reactions, claimed);
     stats.reactions.assign(ids.size(), {{0., 0., 0.}});
     for (unsigned int b = 0; b < ids.size(); ++b)
       {
@@ -176,7 +160,7 @@ namespace StabilizedLagrangian
     stats.point_reactions.assign(point_dirichlet_dofs.size(), {{0., 0., 0.}});
     for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
       for (unsigned int c = 0; c < dim; ++c)
-        if (boundary_conditions.point_dirichlet[p].components[c])
+        if (dirichlet_and_plates.point_dirichlet[p].components[c])
           {
             const types::global_dof_index i     = point_dirichlet_dofs[p][c];
             const bool                    owned = locally_owned_u.is_element(i);

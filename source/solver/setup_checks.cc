@@ -30,11 +30,14 @@ namespace StabilizedLagrangian
       {
         // the hoop strain holds u_r: the one rigid motion is along the axis
         bool held = false;
-        for (const auto &bc : boundary_conditions.dirichlet)
+        for (const auto &bc : dirichlet_and_plates.dirichlet)
           held = held || bc.components[1];
-        for (const auto &bc : boundary_conditions.springs)
-          held = held || bc.stiffness[1] > 0.;
-        for (const auto &bc : boundary_conditions.point_dirichlet)
+        std::vector<BoundaryConditions::Support<dim>> supports;
+        for (const auto &condition : boundary_conditions)
+          condition->add_supports(supports);
+        for (const auto &support : supports)
+          held = held || support.held[1];
+        for (const auto &bc : dirichlet_and_plates.point_dirichlet)
           held = held || bc.components[1];
         if (with_contact)
           for (const auto id : chosen.contact_boundaries)
@@ -55,20 +58,19 @@ namespace StabilizedLagrangian
     Vector<double>     m(n_modes);
     // the supports: the prescribed components, and the springs' stiff ones
     std::vector<std::pair<types::boundary_id, std::vector<bool>>> supports;
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       {
         std::vector<bool> held(dim);
         for (unsigned int d = 0; d < dim; ++d)
           held[d] = bc.components[d];
         supports.emplace_back(bc.boundary_id, held);
       }
-    for (const auto &bc : boundary_conditions.springs)
-      {
-        std::vector<bool> held(dim);
-        for (unsigned int d = 0; d < dim; ++d)
-          held[d] = bc.stiffness[d] > 0.;
-        supports.emplace_back(bc.boundary_id, held);
-      }
+    std::vector<BoundaryConditions::Support<dim>> condition_supports;
+    for (const auto &condition : boundary_conditions)
+      condition->add_supports(condition_supports);
+    for (const auto &support : condition_supports)
+      if (support.boundary)
+        supports.emplace_back(*support.boundary, support.held);
     // a support holding the direction n at a vertex: m_i = n · (mode i there)
     const auto add_direction = [&](const Point<dim> &vertex, const Tensor<1, dim> &n) {
       const Tensor<1, dim> x = (vertex - centre) / size;
@@ -108,7 +110,7 @@ namespace StabilizedLagrangian
                                [&](const Point<dim> &vertex) { add_support(vertex, held); });
     // each point condition's vertex, counted once (by rank 0: the sum below adds the ranks)
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      for (const auto &bc : boundary_conditions.point_dirichlet)
+      for (const auto &bc : dirichlet_and_plates.point_dirichlet)
         {
           std::vector<bool> held(dim);
           for (unsigned int d = 0; d < dim; ++d)
@@ -398,14 +400,14 @@ namespace StabilizedLagrangian
           increment = std::max(increment, std::sqrt(norm_squared));
         }
     };
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       for_each_boundary_vertex(bc.boundary_id,
                                [&](const Point<dim> &vertex) { add_increments(bc, vertex); });
-    for (const auto &bc : boundary_conditions.point_dirichlet)
+    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
       add_increments(bc, bc.point);
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       bc.displacement->check_finite(mpi_communicator);
-    for (const auto &bc : boundary_conditions.point_dirichlet)
+    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
       bc.displacement->check_finite(mpi_communicator);
     return Utilities::MPI::max(increment, mpi_communicator);
   }
@@ -417,7 +419,7 @@ namespace StabilizedLagrangian
     // A prescribed displacement that is not zero at t = 0 is applied whole in
     // the first load step, and cutting that step does not make it smaller.
     Vector<double> value(dim);
-    for (const auto &bc : boundary_conditions.dirichlet)
+    for (const auto &bc : dirichlet_and_plates.dirichlet)
       {
         double largest = 0.;
         bc.displacement->set_time(0.);

@@ -22,6 +22,7 @@
 
 #include <boost/signals2/signal.hpp>
 
+#include <stabilized_lagrangian/boundary_conditions/interface.h>
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
@@ -1089,9 +1090,15 @@ namespace StabilizedLagrangian
     /** u_i = Σ_k C_ik u_{r_k} on each rigid plate's boundary (PlateMotion::coefficients()). */
     void
     add_plate_constraints(AffineConstraints<double> &constraints) const;
-    /** Each rigid plate's force F(t) at its reference DoFs, in the residual and external_force. */
+    /**
+     * The boundary conditions' global terms (the rigid plates' forces F(t) at
+     * their reference DoFs, the point loads), in the residual and external_force.
+     */
     void
     add_plate_forces();
+    /** What the boundary conditions read of the problem, now. */
+    BoundaryConditions::Problem<dim>
+    boundary_view() const;
     /**
      * The sparsity pattern and the matrix: the bodies, and on Γc the slave,
      * multiplier and (with a deformable master) the paired master faces' DoFs,
@@ -1288,9 +1295,9 @@ namespace StabilizedLagrangian
     void
     assemble_contact(const bool assemble_matrix);
     /**
-     * Add the tractions of the Neumann conditions and the springs on @p
-     * cell's faces to @p cell_rhs (the springs' stiffness to @p cell_matrix),
-     * and the external force they make to external_force.
+     * Add the boundary conditions' face terms (the tractions of the Neumann
+     * conditions and the springs) on @p cell's faces to @p cell_rhs (the springs' stiffness to @p
+     * cell_matrix), and the external force they make to external_force.
      */
     void
     add_boundary_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
@@ -1301,28 +1308,12 @@ namespace StabilizedLagrangian
                        Vector<double>                                       &cell_rhs,
                        Vector<double>                                       &cell_external,
                        const bool                                            assemble_matrix);
-    /** The spring's traction −K (u − u_0) on a face: residual and stiffness. */
-    void
-    add_spring_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                            const unsigned int                                    face_no,
-                            const Parameters::SpringCondition<dim>               &spring,
-                            const std::vector<double>                            &coefficients,
-                            FEFaceValues<dim>                                    &fe_face_values,
-                            FullMatrix<double>                                   &cell_matrix,
-                            Vector<double>                                       &cell_rhs,
-                            const bool assemble_matrix) const;
     /** Add a local system to the global one (with the tangent predictor, if pending). */
     void
     add_to_global_system(const FullMatrix<double>                   &local_matrix,
                          Vector<double>                             &local_rhs,
                          const std::vector<types::global_dof_index> &dofs,
                          const bool                                  assemble_matrix);
-    void
-    add_neumann_contribution(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                             const unsigned int                                    face_no,
-                             Parameters::BoundaryFunction<dim>                    &traction,
-                             FEFaceValues<dim>                                    &fe_face_values,
-                             Vector<double>                                       &cell_rhs) const;
 
     // --- refinement.cc: contact statistics of a step, adaptive refinement ---
     /** Forces and point counts of a converged step; records the active set. */
@@ -1570,13 +1561,15 @@ namespace StabilizedLagrangian
     /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
     const bool                axisymmetric;
     const Parameters::Contact contact_parameters;
-    /** the boundaries given by name are resolved by the run (resolve_boundaries) */
-    Parameters::BoundaryConditions<dim>  boundary_conditions;
-    const Parameters::LoadStepping       load_stepping;
-    const Parameters::NonlinearSolver    solver_parameters;
-    const Parameters::LinearSolver       linear_solver_parameters;
-    const Parameters::Output             output_parameters;
-    const Parameters::AdaptiveRefinement adaptive_refinement;
+    /** the Dirichlet conditions and the rigid plates, parsed (names resolved by the run) */
+    Parameters::BoundaryConditions<dim> dirichlet_and_plates;
+    /** the boundary condition plug-ins, in the registry's order of kinds */
+    std::vector<std::unique_ptr<BoundaryConditions::Interface<dim>>> boundary_conditions;
+    const Parameters::LoadStepping                                   load_stepping;
+    const Parameters::NonlinearSolver                                solver_parameters;
+    const Parameters::LinearSolver                                   linear_solver_parameters;
+    const Parameters::Output                                         output_parameters;
+    const Parameters::AdaptiveRefinement                             adaptive_refinement;
     /** the values chosen from the input, the mesh and the materials (reported, not input) */
     ChosenParameters chosen;
     /** the current cycle's output: `Output/Output directory`, or its cycle's subdirectory */
@@ -1720,8 +1713,6 @@ namespace StabilizedLagrangian
     };
     /** Each rigid plate's motion and reference DoFs */
     std::vector<PlateMotion> plate_motions;
-    /** The DoFs of each point load's vertex, per component */
-    std::vector<std::array<types::global_dof_index, dim>> point_load_dofs;
     /** The DoFs of each point Dirichlet condition's vertex, per component */
     std::vector<std::array<types::global_dof_index, dim>> point_dirichlet_dofs;
     /**
