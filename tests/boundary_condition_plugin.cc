@@ -14,8 +14,6 @@
 #include "check_tools.h"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 using namespace dealii;
@@ -70,11 +68,8 @@ namespace
   std::string
   scene(const std::string &push)
   {
-    std::ifstream      file(std::string(SL_PRM_DIR) + "/patin_elastic.prm");
-    std::ostringstream text;
-    text << file.rdbuf();
     // (a later `set` of an entry replaces the file's)
-    return text.str() + R"(
+    return CheckTools::file_text(std::string(SL_PRM_DIR) + "/patin_elastic.prm") + R"(
 subsection Geometry
   subsection block
     set Global refinements = 2

@@ -3,11 +3,23 @@
 #pragma once
 
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 namespace CheckTools
 {
+  /** The text of the file @p path (a scene to which a test appends its `set`s). */
+  inline std::string
+  file_text(const std::string &path)
+  {
+    std::ifstream      file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+  }
+
   /** Number of failed checks so far. */
   inline int failures = 0;
 

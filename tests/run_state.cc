@@ -20,9 +20,7 @@
 #include "check_tools.h"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -40,11 +38,8 @@ namespace
   std::string
   scene(const double wall_time_limit)
   {
-    std::ifstream      file(std::string(SL_PRM_DIR) + "/patin_elastic.prm");
-    std::ostringstream text;
-    text << file.rdbuf();
     // (a later `set` of an entry replaces the file's)
-    return text.str() + R"(
+    return CheckTools::file_text(std::string(SL_PRM_DIR) + "/patin_elastic.prm") + R"(
 subsection Geometry
   subsection block
     set Global refinements = 2
