@@ -218,7 +218,6 @@ namespace StabilizedLagrangian
       condition_kinds()
       {
         std::vector<std::string> kinds = StabilizedLagrangian::BoundaryConditions::kinds();
-        kinds.push_back("Dirichlet");
         kinds.push_back("Rigid plate");
         return kinds;
       }
@@ -354,26 +353,6 @@ namespace StabilizedLagrangian
         StabilizedLagrangian::BoundaryConditions::OnBoundary<dim>::declare_boundary(prm, what);
       };
       prm.enter_subsection("Boundary conditions");
-      for (const auto &name : names_of(sections, "Dirichlet"))
-        if (!declared("Dirichlet " + name))
-          {
-            prm.enter_subsection("Dirichlet " + name);
-            boundary_entry("with a prescribed displacement");
-            prm.declare_entry("Point",
-                              "",
-                              Patterns::Anything(),
-                              "Instead of a boundary: the coordinates (mm) of one vertex of the "
-                              "mesh whose displacement is prescribed (for instance one node held "
-                              "vertically); Boundary id stays -1. Empty: the boundary.");
-            prm.declare_entry("Components",
-                              dim == 2 ? "x, y" : "x, y, z",
-                              Patterns::MultipleSelection(component_names<dim>()),
-                              "Displacement components that are prescribed.");
-            prm.enter_subsection("Displacement");
-            declare_function<dim>(prm, "mm");
-            prm.leave_subsection();
-            prm.leave_subsection();
-          }
       for (const auto &name : names_of(sections, "Rigid plate"))
         if (!declared("Rigid plate " + name))
           {
@@ -518,8 +497,6 @@ namespace StabilizedLagrangian
     BoundaryConditions<dim>::parse_parameters(ParameterHandler        &prm,
                                               const ConditionSections &sections)
     {
-      dirichlet.clear();
-      point_dirichlet.clear();
       plates.clear();
       const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
         return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
@@ -542,34 +519,6 @@ namespace StabilizedLagrangian
             prm, section, entry, what);
       };
       prm.enter_subsection("Boundary conditions");
-      for (const auto &name : names_of(sections, "Dirichlet"))
-        {
-          const std::string section = "Dirichlet " + name;
-          prm.enter_subsection(section);
-          std::vector<bool> mask(dim, false);
-          for (const auto &c : Utilities::split_string_list(prm.get("Components")))
-            mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
-          const auto where = boundary(section);
-          const auto point = vertex("Boundary conditions/" + section);
-          if (where && point)
-            throw InputError("Boundary conditions/" + section +
-                             ": both Boundary id and Point are given; a condition holds on a "
-                             "boundary (Point empty) or at one node (Boundary id = -1).");
-          if (where)
-            dirichlet.push_back(DirichletCondition<dim>{where->first,
-                                                        where->second,
-                                                        ComponentMask(mask),
-                                                        parse_function(section, "Displacement"),
-                                                        "Boundary conditions/" + section});
-          if (point)
-            point_dirichlet.push_back(
-                PointDirichletCondition<dim>{*point,
-                                             ComponentMask(mask),
-                                             parse_function(section, "Displacement"),
-                                             name,
-                                             "Boundary conditions/" + section});
-          prm.leave_subsection();
-        }
       for (const auto &name : names_of(sections, "Rigid plate"))
         {
           const std::string section = "Rigid plate " + name;

@@ -153,16 +153,6 @@ namespace StabilizedLagrangian
                      const std::string &unit,
                      unsigned int       n_components = dim);
 
-    /** @brief A prescribed displacement on some components of a boundary. */
-    template <int dim> struct DirichletCondition
-    {
-      types::boundary_id boundary_id;
-      std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
-      ComponentMask components;
-      std::shared_ptr<BoundaryFunction<dim>> displacement;
-      std::string section; ///< "Boundary conditions/Dirichlet <name>", for messages
-    };
-
     /**
      * @brief A rigid plate tied to a boundary: the boundary's displacement in
      * the plate's components is one translation U (a guided plate), or
@@ -179,19 +169,6 @@ namespace StabilizedLagrangian
       std::optional<Point<dim>> reference_point;            ///< X_0; none: the boundary's centroid
       std::string               name;    ///< the subsection's name, for the columns
       std::string               section; ///< "Boundary conditions/Rigid plate <name>"
-    };
-
-    /**
-     * @brief A prescribed displacement on some components of one node of the
-     * mesh, the vertex at a given point (`Dirichlet <name>` with `Point`).
-     */
-    template <int dim> struct PointDirichletCondition
-    {
-      Point<dim>                             point;        ///< where: a vertex of the mesh (mm)
-      ComponentMask                          components;   ///< the prescribed ones
-      std::shared_ptr<BoundaryFunction<dim>> displacement; ///< mm, evaluated at the point
-      std::string                            name;         ///< the subsection's, for the columns
-      std::string                            section; ///< "Boundary conditions/Dirichlet <name>"
     };
 
     /**
@@ -224,16 +201,12 @@ namespace StabilizedLagrangian
     condition_sections(const std::string &text);
 
     /**
-     * @brief `Boundary conditions` subsection: a list of conditions of any
-     * length, each its own subsection (`Dirichlet <name>`, `Neumann <name>`,
-     * `Spring <name>`, `Rigid plate <name>`).
+     * @brief The `Boundary conditions/Rigid plate <name>` subsections, any
+     * number (the other kinds are plug-ins: boundary_conditions/interface.h).
      */
     template <int dim> struct BoundaryConditions
     {
-      std::vector<DirichletCondition<dim>> dirichlet;
-      /** the `Dirichlet <name>` subsections with a `Point`: one node each */
-      std::vector<PointDirichletCondition<dim>> point_dirichlet;
-      std::vector<RigidPlateCondition<dim>>     plates;
+      std::vector<RigidPlateCondition<dim>> plates;
 
       /**
        * Declare the subsections @p sections names (those already declared

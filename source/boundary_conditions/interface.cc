@@ -46,6 +46,68 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    void
+    Interface<dim>::add_homogeneous_constraints(const Problem<dim> &,
+                                                AffineConstraints<double> &) const
+    {
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::add_prescribed_values(const Problem<dim> &,
+                                          const double,
+                                          std::map<types::global_dof_index, double> &) const
+    {
+    }
+
+    template <int dim>
+    double
+    Interface<dim>::largest_increment(const Problem<dim> &, const LoadSteps &) const
+    {
+      return 0.;
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::warn_if_not_ramped(const Problem<dim> &, const ConditionalOStream &) const
+    {
+    }
+
+    template <int dim>
+    std::optional<IndexSet>
+    Interface<dim>::prescribed_boundary_dofs(const Problem<dim> &, const unsigned int) const
+    {
+      return std::nullopt;
+    }
+
+    template <int dim>
+    std::optional<types::global_dof_index>
+    Interface<dim>::prescribed_point_dof(const unsigned int) const
+    {
+      return std::nullopt;
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::add_statistics_columns(StatisticsWriter::Supports &) const
+    {
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::add_statistics(const Problem<dim> &,
+                                   const ReactionInputs<dim> &,
+                                   StepStatistics &) const
+    {
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::hold_components(const types::boundary_id, std::vector<bool> &) const
+    {
+    }
+
+    template <int dim>
     bool
     Interface<dim>::acts_on_faces_of(const types::boundary_id) const
     {

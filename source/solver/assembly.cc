@@ -354,7 +354,8 @@ namespace StabilizedLagrangian
   BoundaryConditions::Problem<dim>
   ContactProblem<dim>::boundary_view() const
   {
-    return {dof_handler_u, *fe_u, mpi_communicator, locally_owned, axisymmetric, time};
+    return {
+        dof_handler_u, *fe_u, mpi_communicator, locally_owned, locally_owned_u, axisymmetric, time};
   }
 
   template <int dim>

@@ -396,8 +396,6 @@ namespace StabilizedLagrangian
             throw InputError(message.str());
           }
       }
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
     for (const auto &condition : boundary_conditions)
       for (const auto id : condition->boundaries())
         require_boundary(id, condition->section() + "/Boundary id");
@@ -451,9 +449,6 @@ namespace StabilizedLagrangian
       if (!bc.boundary_name.empty())
         bc.boundary_id = resolve(bc.boundary_name, bc.section + "/Boundary id");
     };
-    std::for_each(dirichlet_and_plates.dirichlet.begin(),
-                  dirichlet_and_plates.dirichlet.end(),
-                  resolve_condition);
     for (const auto &condition : boundary_conditions)
       condition->resolve_boundaries(resolve);
     std::for_each(

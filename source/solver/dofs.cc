@@ -44,18 +44,6 @@ namespace StabilizedLagrangian
           weights[k] *= ((k >> d) & 1) ? xi[d] : 1. - xi[d];
       return weights;
     }
-
-    /** The DoFs of component @p c on boundary @p id (those this rank sees). */
-    template <int dim>
-    IndexSet
-    boundary_component_dofs(const DoFHandler<dim>   &dof_handler,
-                            const types::boundary_id id,
-                            const unsigned int       c)
-    {
-      ComponentMask component(dim, false);
-      component.set(c, true);
-      return DoFTools::extract_boundary_dofs(dof_handler, component, {id});
-    }
   } // namespace
 
   template <int dim>
@@ -350,18 +338,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::add_homogeneous_dirichlet_constraints(
       AffineConstraints<double> &constraints) const
   {
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      VectorTools::interpolate_boundary_values(dof_handler_u,
-                                               bc.boundary_id,
-                                               Functions::ZeroFunction<dim>(dim),
-                                               constraints,
-                                               bc.components);
-    for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
-      for (unsigned int c = 0; c < dim; ++c)
-        if (dirichlet_and_plates.point_dirichlet[p].components[c] &&
-            constraints.can_store_line(point_dirichlet_dofs[p][c]) &&
-            !constraints.is_constrained(point_dirichlet_dofs[p][c]))
-          constraints.add_line(point_dirichlet_dofs[p][c]);
+    for (const auto &condition : boundary_conditions)
+      condition->add_homogeneous_constraints(boundary_view(), constraints);
     if (axisymmetric)
       add_axis_constraints(constraints);
   }
@@ -475,7 +453,7 @@ namespace StabilizedLagrangian
       return;
     const IndexSet hanging     = DoFTools::extract_hanging_node_dofs(dof_handler_u);
     const auto     on_boundary = [&](const types::boundary_id id, const unsigned int c) {
-      return boundary_component_dofs(dof_handler_u, id, c);
+      return BoundaryConditions::boundary_component_dofs(dof_handler_u, id, c);
     };
     for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
       {
@@ -488,14 +466,13 @@ namespace StabilizedLagrangian
           if (plate.components[c])
             {
               const IndexSet tied = on_boundary(plate.boundary_id, c);
-              for (const auto &bc : dirichlet_and_plates.dirichlet)
-                if (bc.components[c])
+              for (const auto &condition : boundary_conditions)
+                if (const auto held = condition->prescribed_boundary_dofs(boundary_view(), c))
                   {
-                    const bool shared =
-                        !(tied & on_boundary(bc.boundary_id, c) & locally_owned_u).is_empty();
+                    const bool shared = !(tied & *held & locally_owned_u).is_empty();
                     if (Utilities::MPI::logical_or(shared, mpi_communicator))
                       throw InputError(plate.section + ": its boundary shares nodes with " +
-                                       bc.section + " in component " + "xyz"[c] +
+                                       condition->section() + " in component " + "xyz"[c] +
                                        ", which would hold the plate; leave that component "
                                        "out of one of them.");
                   }
@@ -608,28 +585,25 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::find_point_dofs()
   {
-    point_dirichlet_dofs.clear();
     for (const auto &condition : boundary_conditions)
       condition->find_dofs(boundary_view(),
                            [this](const Point<dim> &point, const std::string &section) {
                              return vertex_dofs(point, section);
                            });
-    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-      point_dirichlet_dofs.push_back(vertex_dofs(bc.point, bc.section));
     // a node held by a point condition and tied to a plate would hold the
     // plate by that node alone: the plate's load would go partly into the
     // point's reaction
-    for (unsigned int p = 0; p < dirichlet_and_plates.point_dirichlet.size(); ++p)
+    for (const auto &condition : boundary_conditions)
       for (const auto &plate : dirichlet_and_plates.plates)
         for (unsigned int c = 0; c < dim; ++c)
-          if (dirichlet_and_plates.point_dirichlet[p].components[c] && plate.components[c])
+          if (const auto dof = condition->prescribed_point_dof(c); dof && plate.components[c])
             {
-              const bool shared = boundary_component_dofs(dof_handler_u, plate.boundary_id, c)
-                                      .is_element(point_dirichlet_dofs[p][c]);
+              const bool shared =
+                  BoundaryConditions::boundary_component_dofs(dof_handler_u, plate.boundary_id, c)
+                      .is_element(*dof);
               if (Utilities::MPI::logical_or(shared, mpi_communicator))
-                throw InputError(dirichlet_and_plates.point_dirichlet[p].section +
-                                 ": its point is a node of " + plate.section + " in component " +
-                                 "xyz"[c] +
+                throw InputError(condition->section() + ": its point is a node of " +
+                                 plate.section + " in component " + "xyz"[c] +
                                  ", which would hold the plate by that node and take part of "
                                  "its load; leave that component out of one of them.");
             }

@@ -351,10 +351,8 @@ namespace StabilizedLagrangian
       return;
     // the prescribed components take any traction: the reactions
     std::vector<bool> free(dim, true);
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      if (bc.boundary_id == id)
-        for (unsigned int d = 0; d < dim; ++d)
-          free[d] = free[d] && !bc.components[d];
+    for (const auto &condition : boundary_conditions)
+      condition->hold_components(id, free);
     // a rigid plate's tied components take the plate's distributed reaction
     for (const auto &bc : dirichlet_and_plates.plates)
       if (bc.boundary_id == id)

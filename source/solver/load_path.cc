@@ -609,24 +609,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::apply_dirichlet_values(const double t)
   {
     std::map<types::global_dof_index, double> values;
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      {
-        bc.displacement->set_time(t);
-        VectorTools::interpolate_boundary_values(
-            dof_handler_u, bc.boundary_id, *bc.displacement, values, bc.components);
-        bc.displacement->check_finite(mpi_communicator);
-      }
-    Vector<double> at_point(dim);
-    for (unsigned int p = 0; p < dirichlet_and_plates.point_dirichlet.size(); ++p)
-      {
-        const auto &bc = dirichlet_and_plates.point_dirichlet[p];
-        bc.displacement->set_time(t);
-        bc.displacement->vector_value(bc.point, at_point);
-        for (unsigned int c = 0; c < dim; ++c)
-          if (bc.components[c])
-            values[point_dirichlet_dofs[p][c]] = at_point(c);
-        bc.displacement->check_finite(mpi_communicator);
-      }
+    for (const auto &condition : boundary_conditions)
+      condition->add_prescribed_values(boundary_view(), t, values);
     double largest_prescribed = 0.;
     for (const auto &entry : values)
       largest_prescribed = std::max(largest_prescribed, std::abs(entry.second));

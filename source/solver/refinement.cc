@@ -55,12 +55,6 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::supported_boundaries() const
   {
     std::vector<types::boundary_id> ids;
-    const auto                      add = [&ids](const types::boundary_id id) {
-      if (std::find(ids.begin(), ids.end(), id) == ids.end())
-        ids.push_back(id);
-    };
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      add(bc.boundary_id);
     for (const auto &condition : boundary_conditions)
       condition->add_supported_boundaries(ids);
     return ids;
@@ -72,8 +66,8 @@ namespace StabilizedLagrangian
   {
     StatisticsWriter::Supports supports;
     supports.reaction_boundaries = supported_boundaries();
-    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-      supports.reaction_points.push_back(bc.name);
+    for (const auto &condition : boundary_conditions)
+      condition->add_statistics_columns(supports);
     for (const auto &plate : dirichlet_and_plates.plates)
       {
         supports.plates.push_back(plate.name);
@@ -119,22 +113,7 @@ namespace StabilizedLagrangian
     const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());
     IndexSet                              claimed(dof_handler_u.n_dofs());
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      for (unsigned int c = 0; c < dim; ++c)
-        if (bc.components[c])
-          {
-            ComponentMask component(dim, false);
-            component.set(c, true);
-            IndexSet dofs =
-                DoFTools::extract_boundary_dofs(dof_handler_u, component, {bc.boundary_id});
-            dofs = dofs & locally_owned_u;
-            dofs.subtract_set(claimed);
-            claimed.add_indices(dofs);
-            const unsigned int b = std::find(ids.begin(), ids.end(), bc.boundary_id) - ids.begin();
-            for (const auto i : dofs)
-              reactions[b][c] += internal_force(i) - external_force(i) + contact_residual(i);
-          }
-    // the springs' force on the body
+    // the Dirichlet conditions' residual on their DoFs (each once), the springs' force
     std::optional<TrilinosWrappers::MPI::Vector> u;
     const Quadrature<dim - 1> face_quadrature = face_gauss(fe_pair->displacement_degree() + 1);
     const BoundaryConditions::ReactionInputs<dim> inputs{
@@ -156,18 +135,9 @@ namespace StabilizedLagrangian
         for (unsigned int d = 0; d < dim; ++d)
           stats.reactions[b][d] = total[d];
       }
-    // each point Dirichlet condition: the residual without constraints at its vertex
-    stats.point_reactions.assign(point_dirichlet_dofs.size(), {{0., 0., 0.}});
-    for (unsigned int p = 0; p < point_dirichlet_dofs.size(); ++p)
-      for (unsigned int c = 0; c < dim; ++c)
-        if (dirichlet_and_plates.point_dirichlet[p].components[c])
-          {
-            const types::global_dof_index i     = point_dirichlet_dofs[p][c];
-            const bool                    owned = locally_owned_u.is_element(i);
-            stats.point_reactions[p][c]         = Utilities::MPI::sum(
-                owned ? internal_force(i) - external_force(i) + contact_residual(i) : 0.,
-                mpi_communicator);
-          }
+    stats.point_reactions.clear();
+    for (const auto &condition : boundary_conditions)
+      condition->add_statistics(boundary_view(), inputs, stats);
   }
 
   template <int dim>

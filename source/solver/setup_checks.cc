@@ -29,16 +29,12 @@ namespace StabilizedLagrangian
     if (axisymmetric)
       {
         // the hoop strain holds u_r: the one rigid motion is along the axis
-        bool held = false;
-        for (const auto &bc : dirichlet_and_plates.dirichlet)
-          held = held || bc.components[1];
+        bool                                          held = false;
         std::vector<BoundaryConditions::Support<dim>> supports;
         for (const auto &condition : boundary_conditions)
           condition->add_supports(supports);
         for (const auto &support : supports)
           held = held || support.held[1];
-        for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-          held = held || bc.components[1];
         if (with_contact)
           for (const auto id : chosen.contact_boundaries)
             for_each_boundary_vertex(id, [&](const Point<dim> &vertex) {
@@ -57,20 +53,9 @@ namespace StabilizedLagrangian
     FullMatrix<double> gram(n_modes, n_modes);
     Vector<double>     m(n_modes);
     // the supports: the prescribed components, and the springs' stiff ones
-    std::vector<std::pair<types::boundary_id, std::vector<bool>>> supports;
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      {
-        std::vector<bool> held(dim);
-        for (unsigned int d = 0; d < dim; ++d)
-          held[d] = bc.components[d];
-        supports.emplace_back(bc.boundary_id, held);
-      }
-    std::vector<BoundaryConditions::Support<dim>> condition_supports;
+    std::vector<BoundaryConditions::Support<dim>> supports;
     for (const auto &condition : boundary_conditions)
-      condition->add_supports(condition_supports);
-    for (const auto &support : condition_supports)
-      if (support.boundary)
-        supports.emplace_back(*support.boundary, support.held);
+      condition->add_supports(supports);
     // a support holding the direction n at a vertex: m_i = n · (mode i there)
     const auto add_direction = [&](const Point<dim> &vertex, const Tensor<1, dim> &n) {
       const Tensor<1, dim> x = (vertex - centre) / size;
@@ -105,18 +90,16 @@ namespace StabilizedLagrangian
             add_direction(vertex, e);
           }
     };
-    for (const auto &[boundary_id, held] : supports)
-      for_each_boundary_vertex(boundary_id,
-                               [&](const Point<dim> &vertex) { add_support(vertex, held); });
+    for (const auto &support : supports)
+      if (support.boundary)
+        for_each_boundary_vertex(*support.boundary, [&](const Point<dim> &vertex) {
+          add_support(vertex, support.held);
+        });
     // each point condition's vertex, counted once (by rank 0: the sum below adds the ranks)
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-        {
-          std::vector<bool> held(dim);
-          for (unsigned int d = 0; d < dim; ++d)
-            held[d] = bc.components[d];
-          add_support(bc.point, held);
-        }
+      for (const auto &support : supports)
+        if (!support.boundary)
+          add_support(support.point, support.held);
     // the contact boundary: along the obstacle's normal, or wholly with friction
     if (with_contact)
       for (const auto id : chosen.contact_boundaries)
@@ -376,39 +359,11 @@ namespace StabilizedLagrangian
   double
   ContactProblem<dim>::largest_dirichlet_increment()
   {
-    // The body starts undeformed (u = 0), so the first step's increment is
-    // the value at the end of that step, whatever the function gives at t = 0.
-    const double   step      = load_stepping.end_time / load_stepping.n_steps;
-    double         increment = 0.;
-    Vector<double> before(dim), after(dim);
-    // (a boundary's or a point condition's)
-    const auto add_increments = [&](const auto &bc, const Point<dim> &vertex) {
-      for (unsigned int k = 0; k < load_stepping.n_steps; ++k)
-        {
-          before = 0.;
-          if (k > 0)
-            {
-              bc.displacement->set_time(k * step);
-              bc.displacement->vector_value(vertex, before);
-            }
-          bc.displacement->set_time((k + 1) * step);
-          bc.displacement->vector_value(vertex, after);
-          double norm_squared = 0.;
-          for (unsigned int d = 0; d < dim; ++d)
-            if (bc.components[d])
-              norm_squared += Utilities::fixed_power<2>(after[d] - before[d]);
-          increment = std::max(increment, std::sqrt(norm_squared));
-        }
-    };
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      for_each_boundary_vertex(bc.boundary_id,
-                               [&](const Point<dim> &vertex) { add_increments(bc, vertex); });
-    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-      add_increments(bc, bc.point);
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      bc.displacement->check_finite(mpi_communicator);
-    for (const auto &bc : dirichlet_and_plates.point_dirichlet)
-      bc.displacement->check_finite(mpi_communicator);
+    const BoundaryConditions::LoadSteps steps{load_stepping.end_time / load_stepping.n_steps,
+                                              load_stepping.n_steps};
+    double                              increment = 0.;
+    for (const auto &condition : boundary_conditions)
+      increment = std::max(increment, condition->largest_increment(boundary_view(), steps));
     return Utilities::MPI::max(increment, mpi_communicator);
   }
 
@@ -416,28 +371,8 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::warn_if_dirichlet_not_ramped() const
   {
-    // A prescribed displacement that is not zero at t = 0 is applied whole in
-    // the first load step, and cutting that step does not make it smaller.
-    Vector<double> value(dim);
-    for (const auto &bc : dirichlet_and_plates.dirichlet)
-      {
-        double largest = 0.;
-        bc.displacement->set_time(0.);
-        for_each_boundary_vertex(bc.boundary_id, [&](const Point<dim> &vertex) {
-          // (not noted as a failure: the run never evaluates t = 0)
-          bc.displacement->Functions::ParsedFunction<dim>::vector_value(vertex, value);
-          for (unsigned int d = 0; d < dim; ++d)
-            if (bc.components[d] && std::isfinite(value[d]))
-              largest = std::max(largest, std::abs(value[d]));
-        });
-        largest = Utilities::MPI::max(largest, mpi_communicator);
-        if (largest > 0.)
-          pcout << "WARNING: " << bc.displacement->name()
-                << ": the prescribed displacement is not zero at t = 0 (up to " << largest
-                << " mm); the body starts undeformed, so the first load step applies it at "
-                   "once, and cutting that step does not reduce it. Make it grow from zero "
-                   "with t (e.g. multiply it by t / End time) to spread it over the steps.\n";
-      }
+    for (const auto &condition : boundary_conditions)
+      condition->warn_if_not_ramped(boundary_view(), pcout);
   }
 
   // Explicit instantiation of the members defined in this file (the class

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
@@ -7,6 +8,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values.h>
@@ -18,9 +20,11 @@
 
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/plugins.h>
+#include <stabilized_lagrangian/postprocessing/statistics.h>
 
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +54,7 @@ namespace StabilizedLagrangian
       const MPI_Comm            communicator;
       /** the owned DoFs of the monolithic numbering (displacements, multipliers, ...) */
       const IndexSet &locally_owned;
+      const IndexSet &locally_owned_u; ///< the owned displacement DoFs
       const bool      axisymmetric;
       const double    time; ///< of the load path
 
@@ -63,6 +68,43 @@ namespace StabilizedLagrangian
         return axisymmetric ? 2. * numbers::PI * x[0] : 1.;
       }
     };
+
+    /** @brief The load path's steps: @p n_steps of length @p step from t = 0. */
+    struct LoadSteps
+    {
+      double       step;
+      unsigned int n_steps;
+    };
+
+    /** @brief The DoFs of component @p c on boundary @p id (those this rank sees). */
+    template <int dim>
+    IndexSet
+    boundary_component_dofs(const DoFHandler<dim>   &dof_handler,
+                            const types::boundary_id id,
+                            const unsigned int       c)
+    {
+      ComponentMask component(dim, false);
+      component.set(c, true);
+      return DoFTools::extract_boundary_dofs(dof_handler, component, {id});
+    }
+
+    /**
+     * @brief Call @p f on each vertex of the faces of boundary @p id of the
+     * locally owned cells (a vertex once per face).
+     */
+    template <int dim, typename Function>
+    void
+    for_each_boundary_vertex(const Triangulation<dim> &triangulation,
+                             const types::boundary_id  id,
+                             const Function           &f)
+    {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int face : cell->face_indices())
+            if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == id)
+              for (const unsigned int v : cell->face(face)->vertex_indices())
+                f(cell->face(face)->vertex(v));
+    }
 
     /** @brief The id of the boundary a mesh names @p name; errors name @p entry. */
     using BoundaryResolver =
@@ -144,6 +186,42 @@ namespace StabilizedLagrangian
       virtual void
       find_dofs(const Problem<dim> &problem, const VertexDoFs<dim> &vertex_dofs);
 
+      /** @brief Add its homogeneous constraints (the Newton correction's) to @p constraints. */
+      virtual void
+      add_homogeneous_constraints(const Problem<dim>        &problem,
+                                  AffineConstraints<double> &constraints) const;
+
+      /**
+       * @brief Collective: add the displacements it prescribes at time @p t to
+       * @p values, and throw InputError if they are not finite.
+       */
+      virtual void
+      add_prescribed_values(const Problem<dim>                        &problem,
+                            double                                     t,
+                            std::map<types::global_dof_index, double> &values) const;
+
+      /**
+       * @brief Collective: the largest change over a load step of what it
+       * prescribes at this rank's vertices (a norm over the components).
+       */
+      virtual double
+      largest_increment(const Problem<dim> &problem, const LoadSteps &steps) const;
+
+      /** @brief Collective: warn on @p out if what it prescribes is not zero at t = 0. */
+      virtual void
+      warn_if_not_ramped(const Problem<dim> &problem, const ConditionalOStream &out) const;
+
+      /**
+       * @brief The DoFs of component @p c of its boundary that it prescribes;
+       * none if it prescribes no boundary's (the rigid plates' checks).
+       */
+      virtual std::optional<IndexSet>
+      prescribed_boundary_dofs(const Problem<dim> &problem, unsigned int c) const;
+
+      /** @brief The DoF of component @p c of the vertex it prescribes, if any. */
+      virtual std::optional<types::global_dof_index>
+      prescribed_point_dof(unsigned int c) const;
+
       /** @brief Whether it has a face term on the boundary @p id. */
       virtual bool
       acts_on_faces_of(types::boundary_id id) const;
@@ -185,9 +263,26 @@ namespace StabilizedLagrangian
                     std::vector<Tensor<1, dim>>           &reactions,
                     IndexSet                              &claimed) const;
 
+      /** @brief Add its columns of the statistics (besides the supported boundaries'). */
+      virtual void
+      add_statistics_columns(StatisticsWriter::Supports &supports) const;
+
+      /** @brief Add its values of those columns to @p stats (collective). */
+      virtual void
+      add_statistics(const Problem<dim>        &problem,
+                     const ReactionInputs<dim> &inputs,
+                     StepStatistics            &stats) const;
+
       /** @brief Add where it holds the body to @p supports (the rigid-motion check). */
       virtual void
       add_supports(std::vector<Support<dim>> &supports) const;
+
+      /**
+       * @brief Error estimate: clear in @p free the components it prescribes
+       * on the boundary @p id (they take any traction).
+       */
+      virtual void
+      hold_components(types::boundary_id id, std::vector<bool> &free) const;
 
       /**
        * @brief Error estimate: add the traction it prescribes at @p x on the

@@ -908,12 +908,7 @@ namespace StabilizedLagrangian
     void
     for_each_boundary_vertex(const types::boundary_id boundary_id, const Function &f) const
     {
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int face : cell->face_indices())
-            if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == boundary_id)
-              for (const unsigned int v : cell->face(face)->vertex_indices())
-                f(cell->face(face)->vertex(v));
+      BoundaryConditions::for_each_boundary_vertex<dim>(triangulation, boundary_id, f);
     }
     /**
      * Collective: the rigid motions of the body that no Dirichlet condition
@@ -1561,7 +1556,7 @@ namespace StabilizedLagrangian
     /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
     const bool                axisymmetric;
     const Parameters::Contact contact_parameters;
-    /** the Dirichlet conditions and the rigid plates, parsed (names resolved by the run) */
+    /** the rigid plates, parsed (names resolved by the run) */
     Parameters::BoundaryConditions<dim> dirichlet_and_plates;
     /** the boundary condition plug-ins, in the registry's order of kinds */
     std::vector<std::unique_ptr<BoundaryConditions::Interface<dim>>> boundary_conditions;
@@ -1713,8 +1708,6 @@ namespace StabilizedLagrangian
     };
     /** Each rigid plate's motion and reference DoFs */
     std::vector<PlateMotion> plate_motions;
-    /** The DoFs of each point Dirichlet condition's vertex, per component */
-    std::vector<std::array<types::global_dof_index, dim>> point_dirichlet_dofs;
     /**
      * The vertices of the point loads and point Dirichlet conditions: the
      * vertex of the mesh nearest to each Point, refused when it is not at the
