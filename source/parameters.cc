@@ -221,6 +221,21 @@ namespace StabilizedLagrangian
         kinds.push_back("Rigid plate");
         return kinds;
       }
+
+      /** The kinds of condition_kinds() with their descriptions, for messages. */
+      std::string
+      condition_kinds_described()
+      {
+        std::string result;
+        for (const auto &kind : condition_kinds())
+          result +=
+              (result.empty() ? "'" : ", '") + kind + "' (" +
+              (kind == "Rigid plate"
+                   ? std::string("a plate carrying a force")
+                   : StabilizedLagrangian::BoundaryConditions::Registry<2>::description(kind)) +
+              ")";
+        return result;
+      }
     } // namespace
 
     ConditionSections
@@ -263,12 +278,9 @@ namespace StabilizedLagrangian
                   }
               if (list == nullptr || label.empty())
                 throw InputError("Boundary conditions/" + name +
-                                 ": a boundary condition is a subsection 'Dirichlet <name>' "
-                                 "(prescribed displacement), 'Neumann <name>' (prescribed "
-                                 "traction), 'Spring <name>' (elastic support), 'Rigid "
-                                 "plate <name>' (a plate carrying a force) or 'Point load <name>', "
-                                 "with any name, "
-                                 "e.g. 'Dirichlet top'.");
+                                 ": a boundary condition is a subsection '<kind> <name>' with "
+                                 "any name, e.g. 'Dirichlet top'; the kinds are " +
+                                 condition_kinds_described() + ".");
               if (std::find(list->begin(), list->end(), label) == list->end())
                 list->push_back(label);
             }

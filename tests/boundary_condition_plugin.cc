@@ -26,7 +26,8 @@ namespace
   {
   public:
     ToyTraction(ParameterHandler &prm, const std::string &section)
-        : BoundaryConditions::OnBoundary<dim>(prm, section, true)
+        : BoundaryConditions::OnBoundary<dim>(
+              prm, section, BoundaryConditions::OnBoundary<dim>::Role::load)
     {
       const auto values =
           Utilities::string_to_double(Utilities::split_string_list(prm.get("Traction")));
@@ -68,13 +69,7 @@ namespace
   std::string
   scene(const std::string &push)
   {
-    // (a later `set` of an entry replaces the file's)
-    return CheckTools::file_text(std::string(SL_PRM_DIR) + "/patin_elastic.prm") + R"(
-subsection Geometry
-  subsection block
-    set Global refinements = 2
-  end
-end
+    return CheckTools::coarse_patin(SL_PRM_DIR) + R"(
 subsection Load stepping
   set Number of load steps = 2
 end

@@ -20,6 +20,23 @@ namespace CheckTools
     return text.str();
   }
 
+  /**
+   * The elastic patin of prm/patin_elastic.prm (@p prm_dir: prm/) on a coarse
+   * mesh (2 refinements), for a test to append its `set`s to (a later `set` of
+   * an entry replaces the file's).
+   */
+  inline std::string
+  coarse_patin(const std::string &prm_dir)
+  {
+    return file_text(prm_dir + "/patin_elastic.prm") + R"(
+subsection Geometry
+  subsection block
+    set Global refinements = 2
+  end
+end
+)";
+  }
+
   /** Number of failed checks so far. */
   inline int failures = 0;
 

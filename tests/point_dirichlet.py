@@ -11,6 +11,8 @@ prm/patin_elastic.prm (100 x 50 mm) resting on the rigid plane, with no boundary
 - with friction mu = 0.3, the top middle node pushed down by d(t): the node's reaction balances
   the contact force, -reaction_point_push_y_N = F_n, and the friction force vanishes with
   nothing pulling sideways, to 1e-8 of F_n at every step; the same on 2 MPI ranks;
+- a node held on a boundary that is held too, in the same component: the node's condition
+  prescribes it, whichever subsection comes first in the file;
 - refused with a message: Point and Boundary id both given, a point that is not a vertex."""
 import os
 import sys
@@ -82,6 +84,44 @@ worst = max(abs(a[c] - b[c]) for a, b in zip(runs[1], runs[2])
             for c in ("normal_force_N", "reaction_point_push_y_N"))
 check(worst <= 1e-8 * runs[1][-1]["normal_force_N"],
       f"2 ranks: the forces of 1 rank (largest difference {worst:.1e} N/mm)")
+
+# The top's corner pulled sideways by 0.02 t mm while the top is held in x and pushed down by
+# 0.05 t mm: the corner's own condition gives its x, the top's its y.
+PULLED_CORNER = """  subsection Dirichlet corner
+    set Point = -50, 50
+    set Components = x
+    subsection Displacement
+      set Function expression = 0.02*t; 0
+    end
+  end
+  subsection Dirichlet top
+    set Boundary id = 3
+    set Components = x, y
+    subsection Displacement
+      set Function expression = 0; -0.05*t
+    end
+  end
+"""
+corner, top = PULLED_CORNER.split("  subsection Dirichlet top\n")
+for order, conditions in (("corner first", PULLED_CORNER), ("top first", "  subsection Dirichlet top\n" + top + corner)):
+    out = os.path.join(workdir, "pulled-" + order.replace(" ", "-"))
+    sltest.run(executable, scene(conditions, 0) + "\nsubsection Output\n  set Output directory = output\nend\n", out)
+    try:
+        vtu = [f for f in sorted(os.listdir(os.path.join(out, "output"))) if f.startswith("solution_00010")
+               and f.endswith(".vtu")]
+        grid = sltest.read_vtu(os.path.join(out, "output", vtu[0]))
+        displacement = grid.GetPointData().GetArray("displacement_mm")
+        at = {}
+        for i in range(grid.GetNumberOfPoints()):
+            x, y, _ = grid.GetPoint(i)
+            if abs(y - 50) < 1e-6 and abs(x + 50) < 1e-6 or abs(y - 50) < 1e-6 and abs(x) < 1e-6:
+                at["corner" if x < -1 else "middle"] = displacement.GetTuple(i)[:2]
+        check(abs(at["corner"][0] - 0.02) <= 1e-6 and abs(at["corner"][1] + 0.05) <= 1e-6
+              and abs(at["middle"][0]) <= 1e-6 and abs(at["middle"][1] + 0.05) <= 1e-6,
+              f"{order}: the corner moved by {at['corner']} mm (its own x, the top's y), the top's "
+              f"middle by {at['middle']} mm (float32 output)")
+    except ImportError:
+        check(False, "python3-vtk9 is needed to read the VTU")
 
 for name, conditions, words in (
         ("Point and Boundary id", PUSHED.replace("set Point = 0, 50", "set Point = 0, 50\n    set Boundary id = 3"),

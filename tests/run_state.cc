@@ -38,13 +38,7 @@ namespace
   std::string
   scene(const double wall_time_limit)
   {
-    // (a later `set` of an entry replaces the file's)
-    return CheckTools::file_text(std::string(SL_PRM_DIR) + "/patin_elastic.prm") + R"(
-subsection Geometry
-  subsection block
-    set Global refinements = 2
-  end
-end
+    return CheckTools::coarse_patin(SL_PRM_DIR) + R"(
 subsection Nonlinear solver
   set Maximum Newton iterations per load step = 7
 end

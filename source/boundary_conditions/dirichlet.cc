@@ -71,7 +71,7 @@ namespace StabilizedLagrangian
     {
     public:
       Dirichlet(ParameterHandler &prm, const std::string &section)
-          : OnBoundary<dim>(prm, section, false)
+          : OnBoundary<dim>(prm, section, OnBoundary<dim>::Role::support)
           , components(parse_components<dim>(prm))
           , displacement(Parameters::parse_function<dim>(prm, section, "Displacement"))
       {
@@ -142,13 +142,6 @@ namespace StabilizedLagrangian
       }
 
       void
-      add_supported_boundaries(std::vector<types::boundary_id> &ids) const override
-      {
-        if (std::find(ids.begin(), ids.end(), this->boundary_id) == ids.end())
-          ids.push_back(this->boundary_id);
-      }
-
-      void
       add_reactions(const Problem<dim>                    &problem,
                     const ReactionInputs<dim>             &inputs,
                     const std::vector<types::boundary_id> &ids,
@@ -210,6 +203,12 @@ namespace StabilizedLagrangian
           , components(parse_components<dim>(prm))
           , displacement(Parameters::parse_function<dim>(prm, section, "Displacement"))
       {
+      }
+
+      bool
+      at_one_vertex() const override
+      {
+        return true;
       }
 
       void
@@ -332,8 +331,9 @@ namespace StabilizedLagrangian
       std::unique_ptr<Interface<dim>>
       create_dirichlet(ParameterHandler &prm, const std::string &section)
       {
-        const bool on_boundary = OnBoundary<dim>(prm, section, false).used();
-        const auto point       = parse_point<dim>(prm, section);
+        const bool on_boundary =
+            OnBoundary<dim>(prm, section, OnBoundary<dim>::Role::support).used();
+        const auto point = parse_point<dim>(prm, section);
         if (on_boundary && point)
           throw InputError(section +
                            ": both Boundary id and Point are given; a condition holds on a "

@@ -2,6 +2,8 @@
 
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
 
+#include <algorithm>
+
 namespace StabilizedLagrangian
 {
   namespace BoundaryConditions
@@ -24,6 +26,13 @@ namespace StabilizedLagrangian
     Interface<dim>::used() const
     {
       return true;
+    }
+
+    template <int dim>
+    bool
+    Interface<dim>::at_one_vertex() const
+    {
+      return false;
     }
 
     template <int dim>
@@ -170,9 +179,9 @@ namespace StabilizedLagrangian
     template <int dim>
     OnBoundary<dim>::OnBoundary(const ParameterHandler &prm,
                                 const std::string      &section,
-                                const bool              face_terms)
+                                const Role              role)
         : Interface<dim>(section)
-        , face_terms(face_terms)
+        , role(role)
     {
       // the condition's boundary, or nothing where it is unused (-1)
       const std::string value = Utilities::trim(prm.get("Boundary id"));
@@ -210,7 +219,15 @@ namespace StabilizedLagrangian
     bool
     OnBoundary<dim>::acts_on_faces_of(const types::boundary_id id) const
     {
-      return face_terms && id == boundary_id;
+      return role != Role::support && id == boundary_id;
+    }
+
+    template <int dim>
+    void
+    OnBoundary<dim>::add_supported_boundaries(std::vector<types::boundary_id> &ids) const
+    {
+      if (role != Role::load && std::find(ids.begin(), ids.end(), boundary_id) == ids.end())
+        ids.push_back(boundary_id);
     }
 
     template <int dim>
@@ -293,6 +310,9 @@ namespace StabilizedLagrangian
                 conditions.push_back(std::move(condition));
             }
       prm.leave_subsection();
+      std::stable_partition(conditions.begin(), conditions.end(), [](const auto &condition) {
+        return !condition->at_one_vertex();
+      });
       return conditions;
     }
 

@@ -9,7 +9,7 @@ namespace StabilizedLagrangian
     {
     public:
       Neumann(ParameterHandler &prm, const std::string &section)
-          : OnBoundary<dim>(prm, section, true)
+          : OnBoundary<dim>(prm, section, OnBoundary<dim>::Role::load)
           , traction(this->used() ? Parameters::parse_function<dim>(prm, section, "Traction")
                                   : nullptr)
       {

@@ -12,7 +12,7 @@ namespace StabilizedLagrangian
     {
     public:
       Spring(ParameterHandler &prm, const std::string &section)
-          : OnBoundary<dim>(prm, section, true)
+          : OnBoundary<dim>(prm, section, OnBoundary<dim>::Role::elastic_support)
       {
         if (!this->used())
           return;
@@ -82,13 +82,6 @@ namespace StabilizedLagrangian
       check_finite(const MPI_Comm communicator) const override
       {
         reference->check_finite(communicator);
-      }
-
-      void
-      add_supported_boundaries(std::vector<types::boundary_id> &ids) const override
-      {
-        if (std::find(ids.begin(), ids.end(), this->boundary_id) == ids.end())
-          ids.push_back(this->boundary_id);
       }
 
       void

@@ -174,6 +174,14 @@ namespace StabilizedLagrangian
       virtual bool
       used() const;
 
+      /**
+       * @brief Whether it acts at one vertex. Such conditions come after those
+       * on boundaries (create()): at its vertex, what it prescribes replaces what
+       * a boundary's condition prescribes in the same component.
+       */
+      virtual bool
+      at_one_vertex() const;
+
       /** @brief Resolve the boundary given by a mesh's name to its id. */
       virtual void
       resolve_boundaries(const BoundaryResolver &resolve);
@@ -307,10 +315,19 @@ namespace StabilizedLagrangian
     {
     public:
       /**
-       * Reads `Boundary id` of the current subsection.
-       * @param face_terms whether it has face terms on its boundary (acts_on_faces_of())
+       * @brief What a condition on a boundary does there: a load has face
+       * terms (acts_on_faces_of()), a support takes the boundary's reaction
+       * (add_supported_boundaries()), an elastic support both.
        */
-      OnBoundary(const ParameterHandler &prm, const std::string &section, bool face_terms);
+      enum class Role
+      {
+        load,
+        support,
+        elastic_support
+      };
+
+      /** Reads `Boundary id` of the current subsection. */
+      OnBoundary(const ParameterHandler &prm, const std::string &section, Role role);
 
       /** @brief False where `Boundary id = -1`. */
       bool
@@ -325,6 +342,10 @@ namespace StabilizedLagrangian
       bool
       acts_on_faces_of(types::boundary_id id) const override;
 
+      /** @brief Its boundary, for a support. */
+      void
+      add_supported_boundaries(std::vector<types::boundary_id> &ids) const override;
+
       /** @brief Declare `Boundary id`, documented with @p what. */
       static void
       declare_boundary(ParameterHandler &prm, const std::string &what);
@@ -335,7 +356,7 @@ namespace StabilizedLagrangian
     private:
       std::string boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
       bool        is_used = false;
-      const bool  face_terms;
+      const Role  role;
     };
 
     /**
@@ -367,7 +388,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The conditions of the subsections @p sections names, in the
-     * order of the registry's kinds, then of @p sections; the unused ones left out.
+     * order of the registry's kinds, then of @p sections, those at one vertex
+     * last (Interface::at_one_vertex()); the unused ones left out.
      */
     template <int dim>
     std::vector<std::unique_ptr<Interface<dim>>>
