@@ -229,7 +229,7 @@ namespace StabilizedLagrangian
         std::string result;
         for (const auto &kind : condition_kinds())
           result +=
-              (result.empty() ? "'" : ", '") + kind + "' (" +
+              (result.empty() ? "'" : ", '") + kind + " <name>' (" +
               (kind == "Rigid plate"
                    ? std::string("a plate carrying a force")
                    : StabilizedLagrangian::BoundaryConditions::Registry<2>::description(kind)) +
@@ -277,10 +277,9 @@ namespace StabilizedLagrangian
                     label = Utilities::trim(name.substr(kind.size() + 1));
                   }
               if (list == nullptr || label.empty())
-                throw InputError("Boundary conditions/" + name +
-                                 ": a boundary condition is a subsection '<kind> <name>' with "
-                                 "any name, e.g. 'Dirichlet top'; the kinds are " +
-                                 condition_kinds_described() + ".");
+                throw InputError(
+                    "Boundary conditions/" + name + ": a boundary condition is a subsection " +
+                    condition_kinds_described() + ", with any name, e.g. 'Dirichlet top'.");
               if (std::find(list->begin(), list->end(), label) == list->end())
                 list->push_back(label);
             }
