@@ -3,7 +3,6 @@
 #include <stabilized_lagrangian/contact/pointwise_conditions.h>
 
 #include <cmath>
-#include <limits>
 
 namespace StabilizedLagrangian
 {
@@ -60,17 +59,6 @@ namespace StabilizedLagrangian
           static_cast<unsigned char>(this->data.law.point_response(state, k).status()));
     });
     return statuses;
-  }
-
-  template <int dim>
-  double
-  PointwiseConditions<dim>::least_gap()
-  {
-    double nearest = std::numeric_limits<double>::max();
-    this->for_each_point(PointRefresh(), [&](const auto &, const auto &state, const auto &k) {
-      nearest = std::min(nearest, state.pairing.gap(k.position));
-    });
-    return Utilities::MPI::min(nearest, this->data.communicator);
   }
 
   template <int dim>

@@ -200,7 +200,7 @@ namespace StabilizedLagrangian
 
   template <int dim>
   double
-  WeightedConditions<dim>::least_gap()
+  WeightedConditions<dim>::least_gap(const double)
   {
     // the nodes' weighted gaps ∫ψ_j g_n / ∫ψ_j: the nearest node closes
     update_integrals(false);

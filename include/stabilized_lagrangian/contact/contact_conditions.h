@@ -127,9 +127,13 @@ namespace StabilizedLagrangian
     /** Open, stick or slip per owned condition (the active-set watch). */
     virtual std::vector<unsigned char>
     statuses() = 0;
-    /** The least gap of the owned conditions at the iterate (a body put on its partner). */
+    /**
+     * The least gap of the owned conditions at the iterate, over the ranks (a
+     * body put on its partner), where @p nearest_point is the least gap of the
+     * contact points, over the ranks.
+     */
     virtual double
-    least_gap() = 0;
+    least_gap(const double nearest_point) = 0;
     /**
      * A body put on its partner: the conditions whose gap is within
      * @p touching of @p nearest close (after least_gap()).

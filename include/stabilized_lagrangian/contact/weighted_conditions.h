@@ -47,7 +47,7 @@ namespace StabilizedLagrangian
     statuses() override;
     /** The least weighted gap ∫ψ_j g_n / ∫ψ_j of the nodes. */
     double
-    least_gap() override;
+    least_gap(const double nearest_point) override;
     void
     close_nearest(const double nearest, const double touching) override;
     PointRefresh
