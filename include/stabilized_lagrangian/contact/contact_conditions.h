@@ -213,9 +213,23 @@ namespace StabilizedLagrangian
     /** Call f(state, kinematics) at every owned point, its state evaluated as @p what names. */
     void
     for_each_point(const PointRefresh                                         &what,
+                   const std::function<void(ContactPointState<dim>       &state,
+                                            const ContactKinematics<dim> &k)> &f);
+    /**
+     * Call f(before, state, kinematics) at every owned point, its state
+     * evaluated as @p what names, with its state before (a loop's change).
+     */
+    void
+    refresh_points(const PointRefresh                                         &what,
                    const std::function<void(const ContactPointState<dim> &before,
                                             ContactPointState<dim>       &state,
                                             const ContactKinematics<dim> &k)> &f);
+
+  private:
+    /** Call f(state, kinematics) at every owned point, nothing evaluated. */
+    void
+    visit_points(
+        const std::function<void(ContactPointState<dim> &state, ContactKinematics<dim> &k)> &f);
   };
 
   /**
