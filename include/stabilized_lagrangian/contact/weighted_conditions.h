@@ -73,6 +73,7 @@ namespace StabilizedLagrangian
     {
       return std::make_unique<WeightedConditions<dim>>(*this);
     }
+    /** Back to the nodal vectors of @p copy, a copy of these conditions on the same mesh. */
     void
     restore(const ContactConditions<dim> &copy) override;
     std::vector<double>
