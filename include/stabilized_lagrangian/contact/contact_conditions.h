@@ -106,9 +106,13 @@ namespace StabilizedLagrangian
     }
     virtual ~ContactConditions() = default;
 
-    /** Whether the conditions hold per multiplier node (run_summary.csv). */
+    /**
+     * Whether the Newton system sees friction thresholds that the conditions
+     * keep themselves (the weighted nodes' s_j), each contact point holding a
+     * copy: a threshold written into a point's state is then not seen.
+     */
     virtual bool
-    nodal() const = 0;
+    keeps_own_thresholds() const = 0;
     /** After the contact points of a new mesh: size the conditions' own state. */
     virtual void
     setup() = 0;

@@ -14,8 +14,9 @@ namespace StabilizedLagrangian
   public:
     using ContactConditions<dim>::ContactConditions;
 
+    /** Each point's own threshold is the one the Newton system sees. */
     bool
-    nodal() const override
+    keeps_own_thresholds() const override
     {
       return false;
     }

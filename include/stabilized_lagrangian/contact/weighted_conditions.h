@@ -29,8 +29,9 @@ namespace StabilizedLagrangian
   public:
     using ContactConditions<dim>::ContactConditions;
 
+    /** The nodes' s_j (`thresholds`); the points carry copies. */
     bool
-    nodal() const override
+    keeps_own_thresholds() const override
     {
       return true;
     }
