@@ -41,23 +41,7 @@ subsection Obstacle
     set Normal = 0, 1
   end
 end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 70000
-    set Poisson's ratio = 0.33
-  end
-end
-subsection Contact
-  set Contact boundary ids = 2
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
+""" + sltest.linear_elastic(70000, 0.33) + sltest.coulomb_contact("  set Contact boundary ids = 2\n", 0.3) + """subsection Boundary conditions
   subsection Dirichlet 1
     set Boundary id = 3
     set Components  = x, y

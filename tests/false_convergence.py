@@ -219,25 +219,10 @@ subsection Geometry
     set Global refinements = 2
   end
 end
-{obstacle}subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = {E}
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = 2
+{obstacle}""" + sltest.linear_elastic(E, 0.3) + sltest.coulomb_contact("""  set Contact boundary ids = 2
   set r_n                  = automatic
   set r_t                  = automatic
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = {mu}
-    end
-  end
-end
-subsection Boundary conditions
+""", mu) + f"""subsection Boundary conditions
 {conditions}end
 subsection Load stepping
   set Number of load steps = {steps}
@@ -596,25 +581,8 @@ end
 subsection Obstacle
   set Model = plane
 end
-subsection Material
-  set Model = linear elastic
-  set Volumetric formulation = F-bar
-  subsection linear elastic
-    set Young's modulus = 200000
-    set Poisson's ratio = 0.4999
-  end
-end
-subsection Contact
-  set Contact boundary ids = 2
-  set r_n                  = automatic
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
+""" + sltest.linear_elastic(200000, 0.4999, formulation="F-bar") + sltest.coulomb_contact(
+        "  set Contact boundary ids = 2\n  set r_n                  = automatic\n", 0.3) + f"""subsection Boundary conditions
   subsection Rigid plate top
     set Boundary id = 3
     set Components  = x, y

@@ -73,24 +73,7 @@ subsection Obstacle
     set Radius = 50
   end
 end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 1000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set r_n = 100
-  set r_t = 10
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
+""" + sltest.linear_elastic(1000, 0.3) + sltest.coulomb_contact("  set r_n = 100\n  set r_t = 10\n", 0.3) + f"""subsection Boundary conditions
   subsection Dirichlet 1
     set Boundary id = 3
     set Components = {"x, y" if dim == 2 else "x, y, z"}

@@ -47,14 +47,7 @@ if len(runs) == 3:
 
 # 3D: hexahedra from an extruded .geo, frictionless, symmetry planes by name
 block3d = os.path.join(prm_dir, "meshes", "block3d.geo")
-text3d = f"""set Dimension = 3
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {block3d}
-  end
-end
-subsection Obstacle
+text3d = sltest.gmsh_mesh(3, block3d) + """subsection Obstacle
   subsection plane
     set Point = 0, 0, 0
     set Normal = 0, 0, 1
@@ -166,14 +159,7 @@ with open(geo, "w") as f:
 
 
 def two_tetrahedral_bodies(slave, master, bottom, top):
-    return f"""set Dimension = 3
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {geo}
-  end
-end
-subsection Contact
+    return sltest.gmsh_mesh(3, geo) + f"""subsection Contact
   set Contact boundary ids = {slave}
   set Master boundary ids  = {master}
   set Finite element pair  = P1/P1

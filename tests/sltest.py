@@ -140,6 +140,48 @@ end
 """
 
 
+def gmsh_mesh(dim, mesh_file, refinements=None):
+    """The dimension and the Geometry subsection of the Gmsh mesh (or .geo) `mesh_file`,
+    refined `refinements` times globally where given."""
+    refined = "" if refinements is None else f"    set Global refinements = {refinements}\n"
+    return f"""set Dimension = {dim}
+subsection Geometry
+  set Model = gmsh
+  subsection gmsh
+    set Mesh file = {mesh_file}
+{refined}  end
+end
+"""
+
+
+def linear_elastic(youngs_modulus, poissons_ratio, formulation=None):
+    """The Material subsection of one linear elastic material, with the volumetric
+    `formulation` (F-bar, ...) where given."""
+    volumetric = "" if formulation is None else f"  set Volumetric formulation = {formulation}\n"
+    return f"""subsection Material
+  set Model = linear elastic
+{volumetric}  subsection linear elastic
+    set Young's modulus = {youngs_modulus}
+    set Poisson's ratio = {poissons_ratio}
+  end
+end
+"""
+
+
+def coulomb_contact(entries, friction_coefficient):
+    """The Contact subsection: `entries` (its own `set` lines, indented), then Coulomb friction
+    with `friction_coefficient`."""
+    return f"""subsection Contact
+{entries}  subsection Friction law
+    set Model = Coulomb
+    subsection Coulomb
+      set Friction coefficient = {friction_coefficient}
+    end
+  end
+end
+"""
+
+
 def cylinder_on_block_geo(arc=13, top=18, side=6, h=3):
     """tests/scenes/cylinder_on_block.geo (a half cylinder, R = 10 mm, touching a block 30 x 10
     mm at one point, non-matching quadrilaterals) with `arc` nodes on each quarter arc, `top`
@@ -156,31 +198,9 @@ def cylinder_on_block_prm(mesh_file, press, steps, contact=""):
     nu = 0.3), the cylinder's arc the slave, the block's top the master, Coulomb mu = 0.3,
     the block's bottom held; `press`: the condition subsection(s) on the cylinder's top
     (cyl_top); `contact`: further Contact entries; `steps` load steps."""
-    return f"""set Dimension = 2
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {mesh_file}
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 20000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = cyl_contact
-  set Master boundary ids  = blk_contact
-{contact}  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = 0.3
-    end
-  end
-end
-subsection Boundary conditions
+    entries = "  set Contact boundary ids = cyl_contact\n  set Master boundary ids  = blk_contact\n"
+    return (gmsh_mesh(2, mesh_file) + linear_elastic(20000, 0.3) + coulomb_contact(entries + contact, 0.3) +
+            f"""subsection Boundary conditions
   subsection Dirichlet base
     set Boundary id = blk_bottom
     set Components  = x, y
@@ -189,7 +209,7 @@ subsection Boundary conditions
 subsection Load stepping
   set Number of load steps = {steps}
 end
-"""
+""")
 
 
 def two_blocks(dim, mesh, friction, refinements=None):
@@ -199,35 +219,13 @@ def two_blocks(dim, mesh, friction, refinements=None):
     scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
     if refinements is None:
         refinements = 1 if dim == 2 else 0
-    return f"""set Dimension = {dim}
-subsection Geometry
-  set Model = gmsh
-  subsection gmsh
-    set Mesh file = {scenes}/{mesh}
-    set Global refinements = {refinements}
-  end
-end
-subsection Material
-  set Model = linear elastic
-  subsection linear elastic
-    set Young's modulus = 1000
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Contact
-  set Contact boundary ids = upper_bottom
+    return (gmsh_mesh(dim, f"{scenes}/{mesh}", refinements) + linear_elastic(1000, 0.3) +
+            coulomb_contact("""  set Contact boundary ids = upper_bottom
   set Master boundary ids = lower_top
   set r_n = automatic
   set r_t = automatic
   set Contact quadrature = Gauss
-  subsection Friction law
-    set Model = Coulomb
-    subsection Coulomb
-      set Friction coefficient = {friction}
-    end
-  end
-end
-"""
+""", friction))
 
 
 def blocks_pressed_and_slid(press, onset, steps):

@@ -6,11 +6,8 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   void
-  ContactConditions<dim>::for_each_point(
-      const PointRefresh                                         &what,
-      const std::function<void(const ContactPointState<dim> &before,
-                               ContactPointState<dim>       &state,
-                               const ContactKinematics<dim> &k)> &f)
+  ContactConditions<dim>::visit_points(
+      const std::function<void(ContactPointState<dim> &state, ContactKinematics<dim> &k)> &f)
   {
     FaceEvaluator<dim> evaluator(data.spaces, data.contact_quadrature);
     for (const auto &face : data.faces)
@@ -18,13 +15,37 @@ namespace StabilizedLagrangian
         evaluator.reinit(face, data.ghosted_solution);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
-            ContactPointState<dim>      &state  = data.states[face.first_point + q];
-            ContactKinematics<dim>       k      = evaluator.kinematics(q);
-            const ContactPointState<dim> before = state;
-            data.law.evaluate_point_state(state, k, what);
-            f(before, state, k);
+            ContactKinematics<dim> k = evaluator.kinematics(q);
+            f(data.states[face.first_point + q], k);
           }
       }
+  }
+
+  template <int dim>
+  void
+  ContactConditions<dim>::for_each_point(
+      const PointRefresh &what,
+      const std::function<void(ContactPointState<dim> &state, const ContactKinematics<dim> &k)> &f)
+  {
+    visit_points([&](ContactPointState<dim> &state, ContactKinematics<dim> &k) {
+      data.law.evaluate_point_state(state, k, what);
+      f(state, k);
+    });
+  }
+
+  template <int dim>
+  void
+  ContactConditions<dim>::refresh_points(
+      const PointRefresh                                         &what,
+      const std::function<void(const ContactPointState<dim> &before,
+                               ContactPointState<dim>       &state,
+                               const ContactKinematics<dim> &k)> &f)
+  {
+    visit_points([&](ContactPointState<dim> &state, ContactKinematics<dim> &k) {
+      const ContactPointState<dim> before = state;
+      data.law.evaluate_point_state(state, k, what);
+      f(before, state, k);
+    });
   }
 
   template <int dim>

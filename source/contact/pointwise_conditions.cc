@@ -3,7 +3,6 @@
 #include <stabilized_lagrangian/contact/pointwise_conditions.h>
 
 #include <cmath>
-#include <limits>
 
 namespace StabilizedLagrangian
 {
@@ -14,7 +13,7 @@ namespace StabilizedLagrangian
     unsigned int changes = 0;
     PointRefresh what;
     what.status = true;
-    this->for_each_point(what, [&](const auto &before, const auto &state, const auto &) {
+    this->refresh_points(what, [&](const auto &before, const auto &state, const auto &) {
       changes += before.in_contact != state.in_contact;
     });
     return Utilities::MPI::sum(changes, this->data.communicator);
@@ -27,7 +26,7 @@ namespace StabilizedLagrangian
     double       max_change = 0., max_threshold = 0.;
     PointRefresh what;
     what.threshold = true;
-    this->for_each_point(what, [&](const auto &before, const auto &state, const auto &) {
+    this->refresh_points(what, [&](const auto &before, const auto &state, const auto &) {
       const double s = state.friction_threshold;
       max_change     = std::max(max_change, std::abs(s - before.friction_threshold));
       max_threshold  = std::max(max_threshold, s);
@@ -55,7 +54,7 @@ namespace StabilizedLagrangian
   {
     std::vector<unsigned char> statuses;
     statuses.reserve(this->data.states.size());
-    this->for_each_point(PointRefresh(), [&](const auto &, const auto &state, const auto &k) {
+    this->for_each_point(PointRefresh(), [&](const auto &state, const auto &k) {
       statuses.push_back(
           static_cast<unsigned char>(this->data.law.point_response(state, k).status()));
     });
@@ -63,21 +62,10 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  double
-  PointwiseConditions<dim>::least_gap()
-  {
-    double nearest = std::numeric_limits<double>::max();
-    this->for_each_point(PointRefresh(), [&](const auto &, const auto &state, const auto &k) {
-      nearest = std::min(nearest, state.pairing.gap(k.position));
-    });
-    return Utilities::MPI::min(nearest, this->data.communicator);
-  }
-
-  template <int dim>
   void
   PointwiseConditions<dim>::close_nearest(const double nearest, const double touching)
   {
-    this->for_each_point(PointRefresh(), [&](const auto &, auto &state, const auto &k) {
+    this->for_each_point(PointRefresh(), [&](auto &state, const auto &k) {
       state.in_contact = state.pairing.gap(k.position) <= nearest + touching;
     });
   }
@@ -110,7 +98,7 @@ namespace StabilizedLagrangian
     const unsigned int          n_zones = this->data.n_zones();
     std::vector<double>         zone_normal(n_zones + 1, 0.);
     std::vector<Tensor<1, dim>> zone_tangential(n_zones + 1);
-    this->for_each_point(PointRefresh(), [&](const auto &, const auto &state, const auto &k) {
+    this->for_each_point(PointRefresh(), [&](const auto &state, const auto &k) {
       const auto point = this->data.law.point_response(state, k);
       ++counts[0];
       if (point.status() == Contact::Status::open)

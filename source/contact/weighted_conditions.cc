@@ -200,7 +200,7 @@ namespace StabilizedLagrangian
 
   template <int dim>
   double
-  WeightedConditions<dim>::least_gap()
+  WeightedConditions<dim>::least_gap(const double)
   {
     // the nodes' weighted gaps ∫ψ_j g_n / ∫ψ_j: the nearest node closes
     update_integrals(false);
@@ -434,13 +434,14 @@ namespace StabilizedLagrangian
   void
   WeightedConditions<dim>::restore(const ContactConditions<dim> &copy)
   {
+    // what an iterate changes; the nodes are the mesh's (setup()), and a step
+    // cut keeps the mesh
     const auto &saved = dynamic_cast<const WeightedConditions<dim> &>(copy);
-    weights           = saved.weights;
-    integrals         = saved.integrals;
-    status            = saved.status;
-    thresholds        = saved.thresholds;
-    owned_nodes       = saved.owned_nodes;
-    nodes             = saved.nodes;
+    Assert(saved.nodes == nodes, ExcMessage("a copy of the conditions on another mesh"));
+    weights    = saved.weights;
+    integrals  = saved.integrals;
+    status     = saved.status;
+    thresholds = saved.thresholds;
   }
 
   template <int dim>

@@ -310,8 +310,9 @@ namespace StabilizedLagrangian
     // one solve they see the mean pressure the loads imply, total applied
     // force over the area in contact (or 1e-6 E where the loads are
     // prescribed displacements), so that they stick; the loops then take s
-    // from λ_n. (The weighted conditions keep their nodal thresholds.)
-    if (contact_start.provisional_used || conditions->nodal() ||
+    // from λ_n. (Conditions that keep their own thresholds, the weighted
+    // nodes' s_j, would not see those set at the points.)
+    if (contact_start.provisional_used || conditions->keeps_own_thresholds() ||
         !any_pressure_dependent_threshold())
       return false;
     const ContactCensus census = contact_census();

@@ -188,8 +188,8 @@ namespace StabilizedLagrangian
     contact_start.approach_gap  = std::max(nearest, 0.) + touching_gap;
     contact_start.approach_used = true;
     // the conditions' own gaps (the nodes' weighted gaps): the nearest closes
-    contact_start.approach_gap =
-        std::max(contact_start.approach_gap, std::max(conditions->least_gap(), 0.) + touching_gap);
+    contact_start.approach_gap = std::max(
+        contact_start.approach_gap, std::max(conditions->least_gap(nearest), 0.) + touching_gap);
     conditions->close_nearest(nearest, touching_gap);
     pcout << "  nothing touches the "
           << (free_rigid_motions.empty()

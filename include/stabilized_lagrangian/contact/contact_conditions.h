@@ -106,9 +106,13 @@ namespace StabilizedLagrangian
     }
     virtual ~ContactConditions() = default;
 
-    /** Whether the conditions hold per multiplier node (run_summary.csv). */
+    /**
+     * Whether the Newton system sees friction thresholds that the conditions
+     * keep themselves (the weighted nodes' s_j), each contact point holding a
+     * copy: a threshold written into a point's state is then not seen.
+     */
     virtual bool
-    nodal() const = 0;
+    keeps_own_thresholds() const = 0;
     /** After the contact points of a new mesh: size the conditions' own state. */
     virtual void
     setup() = 0;
@@ -127,9 +131,13 @@ namespace StabilizedLagrangian
     /** Open, stick or slip per owned condition (the active-set watch). */
     virtual std::vector<unsigned char>
     statuses() = 0;
-    /** The least gap of the owned conditions at the iterate (a body put on its partner). */
+    /**
+     * The least gap of the owned conditions at the iterate, over the ranks (a
+     * body put on its partner), where @p nearest_point is the least gap of the
+     * contact points, over the ranks.
+     */
     virtual double
-    least_gap() = 0;
+    least_gap(const double nearest_point) = 0;
     /**
      * A body put on its partner: the conditions whose gap is within
      * @p touching of @p nearest close (after least_gap()).
@@ -209,9 +217,23 @@ namespace StabilizedLagrangian
     /** Call f(state, kinematics) at every owned point, its state evaluated as @p what names. */
     void
     for_each_point(const PointRefresh                                         &what,
+                   const std::function<void(ContactPointState<dim>       &state,
+                                            const ContactKinematics<dim> &k)> &f);
+    /**
+     * Call f(before, state, kinematics) at every owned point, its state
+     * evaluated as @p what names, with its state before (a loop's change).
+     */
+    void
+    refresh_points(const PointRefresh                                         &what,
                    const std::function<void(const ContactPointState<dim> &before,
                                             ContactPointState<dim>       &state,
                                             const ContactKinematics<dim> &k)> &f);
+
+  private:
+    /** Call f(state, kinematics) at every owned point, nothing evaluated. */
+    void
+    visit_points(
+        const std::function<void(ContactPointState<dim> &state, ContactKinematics<dim> &k)> &f);
   };
 
   /**

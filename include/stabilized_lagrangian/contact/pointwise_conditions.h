@@ -14,8 +14,9 @@ namespace StabilizedLagrangian
   public:
     using ContactConditions<dim>::ContactConditions;
 
+    /** Each point's own threshold is the one the Newton system sees. */
     bool
-    nodal() const override
+    keeps_own_thresholds() const override
     {
       return false;
     }
@@ -31,8 +32,12 @@ namespace StabilizedLagrangian
     contact_statuses() const override;
     std::vector<unsigned char>
     statuses() override;
+    /** Each point holds its own conditions: the least gap of the points. */
     double
-    least_gap() override;
+    least_gap(const double nearest_point) override
+    {
+      return nearest_point;
+    }
     void
     close_nearest(const double nearest, const double touching) override;
     PointRefresh

@@ -29,8 +29,9 @@ namespace StabilizedLagrangian
   public:
     using ContactConditions<dim>::ContactConditions;
 
+    /** The nodes' s_j (`thresholds`); the points carry copies. */
     bool
-    nodal() const override
+    keeps_own_thresholds() const override
     {
       return true;
     }
@@ -47,7 +48,7 @@ namespace StabilizedLagrangian
     statuses() override;
     /** The least weighted gap ∫ψ_j g_n / ∫ψ_j of the nodes. */
     double
-    least_gap() override;
+    least_gap(const double nearest_point) override;
     void
     close_nearest(const double nearest, const double touching) override;
     PointRefresh
@@ -73,6 +74,7 @@ namespace StabilizedLagrangian
     {
       return std::make_unique<WeightedConditions<dim>>(*this);
     }
+    /** Back to the nodal vectors of @p copy, a copy of these conditions on the same mesh. */
     void
     restore(const ContactConditions<dim> &copy) override;
     std::vector<double>
