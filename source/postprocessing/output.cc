@@ -256,13 +256,7 @@ namespace StabilizedLagrangian
   template <int dim> struct ContactProblem<dim>::ContactField
   {
     /** What a field is evaluated from at a point. */
-    struct Sample
-    {
-      const ContactPointState<dim>          &state;
-      const ContactKinematics<dim>          &kinematics;
-      const Contact::PointResponse<dim - 1> &response; ///< the point-wise stabilized Lagrangian
-      double                                 gap;      ///< g_n with the point's pairing
-    };
+    using Sample = ContactSample<dim>;
 
     std::string  name;       ///< of the VTU field
     std::string  column;     ///< the profile's columns are column[_x|_y|_z][_unit]
@@ -284,15 +278,7 @@ namespace StabilizedLagrangian
       for (unsigned int d = 0; d < dim; ++d)
         values.push_back(v[d]);
     };
-    // the slip accumulated at the point's node, this step's slip added where it
-    // is in contact (the slip_increment field's slip)
-    const auto accumulated = [this](const Sample &p) -> const AccumulatedSlip & {
-      const Tensor<1, dim> slip = p.state.pairing.from_tangential_components(
-          p.state.pairing.tangential_components(p.kinematics.step_increment));
-      return accumulate_slip(Point<dim>(p.kinematics.position - p.kinematics.displacement),
-                             slip,
-                             p.response.status() != Contact::Status::open);
-    };
+    // the cumulative slip is the solver's, committed before the output (CumulativeSlip)
     return {
         {"contact_pressure",
          "contact_pressure",
@@ -318,67 +304,27 @@ namespace StabilizedLagrangian
          "cumulative_slip",
          "mm",
          dim,
-         [accumulated](const Sample &p, Values &values) {
-           const auto &slip = accumulated(p);
+         [](const Sample &p, Values &values) {
            for (unsigned int d = 0; d < dim; ++d)
-             values.push_back(slip.total[d]);
+             values.push_back(p.cumulative_slip[d]);
          }},
         {"slip_path",
          "slip_path",
          "mm",
          1,
-         [accumulated](const Sample &p, Values &values) { values.push_back(accumulated(p).path); }},
+         [](const Sample &p, Values &values) { values.push_back(p.slip_path); }},
         {"contact_status", "status", "", 1, [](const Sample &p, Values &values) {
            values.push_back(static_cast<double>(p.response.status()));
          }}};
   }
 
   template <int dim>
-  typename ContactProblem<dim>::AccumulatedSlip &
-  ContactProblem<dim>::accumulate_slip(const Point<dim>     &X,
-                                       const Tensor<1, dim> &increment,
-                                       const bool            in_contact)
-  {
-    // a node is evaluated once per face that holds it: each evaluation of a
-    // step sets the same total from the value before the step
-    std::array<std::int64_t, dim> key;
-    for (unsigned int d = 0; d < dim; ++d)
-      key[d] = std::llround(X[d] * 1e9);
-    AccumulatedSlip &slip = accumulated_slip[key];
-    if (slip.step != output_step)
-      {
-        slip.before      = slip.total;
-        slip.path_before = slip.path;
-        slip.step        = output_step;
-      }
-    slip.total = slip.before + (in_contact ? increment : Tensor<1, dim>());
-    slip.path  = slip.path_before + (in_contact ? increment.norm() : 0.);
-    return slip;
-  }
-
-  template <int dim>
-  std::vector<double>
-  ContactProblem<dim>::contact_field_values(const std::vector<ContactField>       &fields,
-                                            ContactKinematics<dim>                 k,
-                                            const Contact::PointResponse<dim - 1> *node) const
-  {
-    // the state of the converged iterate, evaluated afresh at the point
-    ContactPointState<dim> state;
-    evaluate_point_state(state, k, PointRefresh{true, true, true});
-    const double        gap   = state.pairing.gap(k.position);
-    const auto          point = node ? *node : point_response(state, k);
-    std::vector<double> values;
-    for (const auto &field : fields)
-      field.evaluate({state, k, point, gap}, values);
-    return values;
-  }
-
-  template <int dim>
   void
-  ContactProblem<dim>::sample_contact_fields(const std::vector<ContactField> &fields,
-                                             const DoFHandler<dim>           &field_dofs,
-                                             TrilinosWrappers::MPI::Vector   &vertex_values,
-                                             std::vector<double>             &profile) const
+  ContactProblem<dim>::sample_contact_fields(const std::vector<ContactField>       &fields,
+                                             const std::vector<ContactSample<dim>> &samples,
+                                             const DoFHandler<dim>                 &field_dofs,
+                                             TrilinosWrappers::MPI::Vector         &vertex_values,
+                                             std::vector<double>                   &profile) const
   {
     IndexSet field_relevant;
     DoFTools::extract_locally_relevant_dofs(field_dofs, field_relevant);
@@ -387,43 +333,29 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector counts(sums);
     const unsigned int            n_components = field_dofs.get_fe().n_components();
 
-    // One pass over the nodes of the contact faces (Gauss-Lobatto points of
-    // the larger of the two degrees: the vertices for Q1/P1, also the
-    // midsides for quadratic pairs): every node goes into the profile, in
-    // reference coordinates; the vertices also into the vertex fields.
-    // (on triangle faces the vertices only: see face_nodes())
-    const Quadrature<dim - 1> node_quadrature = face_nodes(
-        (dim == 3 && simplex_mesh())
-            ? 1u
-            : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
-    FaceEvaluator evaluator(spaces, node_quadrature, false);
-    evaluator.use_nodal_coefficients();
-    conditions->prepare_sampling();
-    for (const auto &face : contact_faces)
+    // every node goes into the profile, in reference coordinates; the
+    // vertices also into the vertex fields
+    for (const auto &sample : samples)
       {
-        evaluator.reinit(face, ghosted_solution);
-        conditions->reinit_face(evaluator);
         const typename DoFHandler<dim>::active_cell_iterator field_cell(
-            &triangulation, face.cell->level(), face.cell->index(), &field_dofs);
-        const auto   vertex_face = field_cell->face(face.face_no);
-        const double tolerance   = 1e-10 * vertex_face->diameter();
-        for (unsigned int q = 0; q < node_quadrature.size(); ++q)
-          {
-            const Point<dim>         &X      = evaluator.u_values->quadrature_point(q);
-            const std::vector<double> values = contact_field_values(
-                fields, evaluator.kinematics(q), conditions->response_at(evaluator, q));
-            for (unsigned int d = 0; d < dim; ++d)
-              profile.push_back(X[d]);
-            profile.insert(profile.end(), values.begin(), values.end());
-            for (const unsigned int v : vertex_face->vertex_indices())
-              if (vertex_face->vertex(v).distance(X) < tolerance)
-                for (unsigned int c = 0; c < n_components; ++c)
-                  {
-                    const auto index = vertex_face->vertex_dof_index(v, c);
-                    sums(index) += values[c];
-                    counts(index) += 1.;
-                  }
-          }
+            &triangulation, sample.cell->level(), sample.cell->index(), &field_dofs);
+        const auto          vertex_face = field_cell->face(sample.face_no);
+        const double        tolerance   = 1e-10 * vertex_face->diameter();
+        const Point<dim>   &X           = sample.reference_position;
+        std::vector<double> values;
+        for (const auto &field : fields)
+          field.evaluate(sample, values);
+        for (unsigned int d = 0; d < dim; ++d)
+          profile.push_back(X[d]);
+        profile.insert(profile.end(), values.begin(), values.end());
+        for (const unsigned int v : vertex_face->vertex_indices())
+          if (vertex_face->vertex(v).distance(X) < tolerance)
+            for (unsigned int c = 0; c < n_components; ++c)
+              {
+                const auto index = vertex_face->vertex_dof_index(v, c);
+                sums(index) += values[c];
+                counts(index) += 1.;
+              }
       }
     sums.compress(VectorOperation::add);
     counts.compress(VectorOperation::add);
@@ -442,10 +374,10 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::output_results(const unsigned int step, const double t)
+  ContactProblem<dim>::output_results(const unsigned int                     step,
+                                      const double                           t,
+                                      const std::vector<ContactSample<dim>> &samples)
   {
-    TimerOutput::Scope scope(timer, "output");
-    output_step                                  = step;
     const std::vector<ContactField> fields       = contact_fields();
     unsigned int                    n_components = 0;
     for (const auto &field : fields)
@@ -456,10 +388,9 @@ namespace StabilizedLagrangian
                                         : FESystem<dim>(FE_Q<dim>(1), n_components);
     DoFHandler<dim>     field_dofs(triangulation);
     field_dofs.distribute_dofs(fe_fields);
-    update_partner_configuration();
     TrilinosWrappers::MPI::Vector vertex_values;
     std::vector<double>           profile;
-    sample_contact_fields(fields, field_dofs, vertex_values, profile);
+    sample_contact_fields(fields, samples, field_dofs, vertex_values, profile);
     if (output_parameters.write_vtu)
       write_solution(step, t, fields, field_dofs, vertex_values);
     if (output_parameters.write_profiles && step > 0)
@@ -776,14 +707,10 @@ namespace StabilizedLagrangian
   ContactProblem<2>::write_obstacle(unsigned int, double) const;
   template void
   ContactProblem<3>::write_obstacle(unsigned int, double) const;
-  template ContactProblem<2>::AccumulatedSlip &
-  ContactProblem<2>::accumulate_slip(const Point<2> &, const Tensor<1, 2> &, bool);
-  template ContactProblem<3>::AccumulatedSlip &
-  ContactProblem<3>::accumulate_slip(const Point<3> &, const Tensor<1, 3> &, bool);
   template void
-  ContactProblem<2>::output_results(unsigned int, double);
+  ContactProblem<2>::output_results(unsigned int, double, const std::vector<ContactSample<2>> &);
   template void
-  ContactProblem<3>::output_results(unsigned int, double);
+  ContactProblem<3>::output_results(unsigned int, double, const std::vector<ContactSample<3>> &);
   template void
   ContactProblem<2>::prepare_output_directory() const;
   template void

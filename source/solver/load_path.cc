@@ -199,7 +199,7 @@ namespace StabilizedLagrangian
     timer.reset();
     print_path_banner();
     if (!resumed)
-      output_results(0, 0.);
+      commit_converged_step(0, 0.);
 
     PathLog path(time, work);
     while (steps.before_end(time))
@@ -255,7 +255,7 @@ namespace StabilizedLagrangian
     statistics.open(output_directory, dim, root, statistics_supports());
     pvd_records.clear();
     active_set.clear();
-    accumulated_slip.clear();
+    cumulative_slip.clear();
     steps.restart();
     path_start_work = work;
     last_step_size  = 0.;
@@ -343,7 +343,7 @@ namespace StabilizedLagrangian
     last_normal_force           = stats.normal_force;
     path.most_points_in_contact = std::max(path.most_points_in_contact, stats.points_in_contact);
     path.contact_point_count    = stats.contact_points;
-    output_results(stats.step, time);
+    commit_converged_step(stats.step, time);
     for (const auto index : locally_owned)
       last_increment(index) = solution(index) - step_start(index);
     last_increment.compress(VectorOperation::insert);

@@ -271,13 +271,13 @@ namespace StabilizedLagrangian
     state_list.add(
         "accumulated slip",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(accumulated_slip_list()); },
+        [this](StateWriter &out) { out.put(cumulative_slip.list()); },
         [this](StateReader &in) -> std::function<void()> {
           std::vector<double> slips;
           in.get(slips, "accumulated slip values");
           if (!valid_slips<dim>(slips))
             in.damaged("its accumulated slip is not a list of whole, finite entries");
-          return [this, slips]() { restore_accumulated_slip(slips); };
+          return [this, slips]() { cumulative_slip.restore(slips); };
         });
   }
 

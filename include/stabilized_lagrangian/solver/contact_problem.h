@@ -25,6 +25,7 @@
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
+#include <stabilized_lagrangian/contact/cumulative_slip.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/partner.h>
@@ -733,11 +734,6 @@ namespace StabilizedLagrangian
     /** The contact faces' segment rules, as restore_segments() reads them. */
     std::vector<double>
     face_segments_list() const;
-    /** The accumulated slip per node of Γc: key, step, then the sums; and back. */
-    std::vector<double>
-    accumulated_slip_list() const;
-    void
-    restore_accumulated_slip(const std::vector<double> &slips);
 
     // --- run_state_list.cc: the run's state, listed once ---
     /** Add the problem's own state to the list, in the order it is read back. */
@@ -1470,9 +1466,24 @@ namespace StabilizedLagrangian
     double
     deformable_master_compliance() const;
 
+    // --- converged_step.cc ---
+    /**
+     * A load step (or the initial state, step 0) converged: sample Γc at the
+     * iterate, commit the step's slip into cumulative_slip and write the output.
+     */
+    void
+    commit_converged_step(const unsigned int step, const double time);
+    /** The converged state at the nodes of Γc, evaluated afresh at the iterate. */
+    std::vector<ContactSample<dim>>
+    sample_contact_surface();
+    /** the slip of Γc's nodes over the converged steps (a checkpoint keeps it) */
+    CumulativeSlip<dim> cumulative_slip;
+
     // --- output.cc ---
     void
-    output_results(const unsigned int step, const double time);
+    output_results(const unsigned int                     step,
+                   const double                           time,
+                   const std::vector<ContactSample<dim>> &samples);
     /**
      * One contact output field: its VTU name, its profile columns and its
      * evaluation at a point of Γc (a field is one entry of contact_fields()).
@@ -1482,47 +1493,16 @@ namespace StabilizedLagrangian
     std::vector<ContactField>
     contact_fields();
     /**
-     * The slip accumulated at a node of Γc over the converged steps in which
-     * it was in contact: the vector sum of the steps' slip increments and the
-     * sum of their lengths (the slip path), up to the end of step `step`.
-     */
-    struct AccumulatedSlip
-    {
-      unsigned int   step = 0; ///< the last step added
-      Tensor<1, dim> before;   ///< the vector sum before that step
-      double         path_before = 0.;
-      Tensor<1, dim> total; ///< the vector sum with it
-      double         path = 0.;
-    };
-    /**
-     * The accumulated slip of the nodes of Γc, by reference position (in
-     * 1e-9 mm); cleared when a load path starts, kept by the checkpoint.
-     */
-    std::map<std::array<std::int64_t, dim>, AccumulatedSlip> accumulated_slip;
-    /** the load step whose output is being evaluated (the accumulated slip's) */
-    unsigned int output_step = 0;
-    /** The accumulated slip of the node at reference position @p X after step output_step. */
-    AccumulatedSlip &
-    accumulate_slip(const Point<dim> &X, const Tensor<1, dim> &increment, bool in_contact);
-    /**
-     * The values of @p fields at a point of Γc, from the converged iterate
-     * evaluated afresh; with weighted complementarity, the tractions and status
-     * of the point's nearest node, @p node.
-     */
-    std::vector<double>
-    contact_field_values(const std::vector<ContactField>       &fields,
-                         ContactKinematics<dim>                 k,
-                         const Contact::PointResponse<dim - 1> *node = nullptr) const;
-    /**
-     * Evaluate @p fields at the nodes of Γc: averaged at the vertices into
+     * Evaluate @p fields at the samples of Γc: averaged at the vertices into
      * @p vertex_values (a Q1 field of @p field_dofs), each node's reference
      * coordinates and values appended to @p profile.
      */
     void
-    sample_contact_fields(const std::vector<ContactField> &fields,
-                          const DoFHandler<dim>           &field_dofs,
-                          TrilinosWrappers::MPI::Vector   &vertex_values,
-                          std::vector<double>             &profile) const;
+    sample_contact_fields(const std::vector<ContactField>       &fields,
+                          const std::vector<ContactSample<dim>> &samples,
+                          const DoFHandler<dim>                 &field_dofs,
+                          TrilinosWrappers::MPI::Vector         &vertex_values,
+                          std::vector<double>                   &profile) const;
     /** Write the VTU of @p step with the contact fields, and list it in solution.pvd. */
     void
     write_solution(const unsigned int                   step,
