@@ -486,7 +486,7 @@ namespace StabilizedLagrangian
             SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
           output_directory = cycle_directory(cycle);
           statistics.resume(output_directory, dim, root, statistics_supports(), statistics_state);
-          write_pvd();
+          solution_output.write_pvd(output_directory);
         }
       catch (const std::exception &e)
         {

@@ -29,7 +29,7 @@ namespace StabilizedLagrangian
     // the boundary names are checked by setup()
     setup();
     if (!resume)
-      prepare_output_directory();
+      solution_output.prepare_directory(output_directory);
     const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
     // the estimate of the restored (converged) state, which the cycle's row
     // and the summary report if the checkpoint ended the cycle's load path
@@ -253,7 +253,7 @@ namespace StabilizedLagrangian
     if (root)
       std::filesystem::create_directories(output_directory);
     statistics.open(output_directory, dim, root, statistics_supports());
-    pvd_records.clear();
+    solution_output.set_records({});
     active_set.clear();
     cumulative_slip.clear();
     steps.restart();

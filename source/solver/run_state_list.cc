@@ -305,8 +305,9 @@ namespace StabilizedLagrangian
         "pvd records",
         Scope::checkpoint_only,
         [this](StateWriter &out) {
-          out.put(static_cast<std::uint64_t>(pvd_records.size()));
-          for (const auto &[t, file] : pvd_records)
+          const auto &records = solution_output.records();
+          out.put(static_cast<std::uint64_t>(records.size()));
+          for (const auto &[t, file] : records)
             {
               out.put(t);
               out.put(file);
@@ -323,7 +324,7 @@ namespace StabilizedLagrangian
               if (!std::isfinite(t) || !is_solution_record(record))
                 in.damaged("a .pvd record is not a time and a file solution_<step>.pvtu");
             }
-          return [this, records]() { pvd_records = records; };
+          return [this, records]() { solution_output.set_records(records); };
         });
     // the output files continue where the checkpoint was taken (after the .pvd records)
     state_list.add(

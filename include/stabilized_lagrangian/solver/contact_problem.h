@@ -37,6 +37,7 @@
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
@@ -1479,67 +1480,14 @@ namespace StabilizedLagrangian
     /** the slip of Γc's nodes over the converged steps (a checkpoint keeps it) */
     CumulativeSlip<dim> cumulative_slip;
 
-    // --- output.cc ---
+    /** Hand the output files of @p step the converged state and @p samples (SolutionOutput). */
     void
     output_results(const unsigned int                     step,
                    const double                           time,
                    const std::vector<ContactSample<dim>> &samples);
-    /**
-     * One contact output field: its VTU name, its profile columns and its
-     * evaluation at a point of Γc (a field is one entry of contact_fields()).
-     */
-    struct ContactField;
-    /** The contact output fields, in the order of the VTU's and the profile's. */
-    std::vector<ContactField>
-    contact_fields();
-    /**
-     * Evaluate @p fields at the samples of Γc: averaged at the vertices into
-     * @p vertex_values (a Q1 field of @p field_dofs), each node's reference
-     * coordinates and values appended to @p profile.
-     */
-    void
-    sample_contact_fields(const std::vector<ContactField>       &fields,
-                          const std::vector<ContactSample<dim>> &samples,
-                          const DoFHandler<dim>                 &field_dofs,
-                          TrilinosWrappers::MPI::Vector         &vertex_values,
-                          std::vector<double>                   &profile) const;
-    /** Write the VTU of @p step with the contact fields, and list it in solution.pvd. */
-    void
-    write_solution(const unsigned int                   step,
-                   const double                         time,
-                   const std::vector<ContactField>     &fields,
-                   const DoFHandler<dim>               &field_dofs,
-                   const TrilinosWrappers::MPI::Vector &vertex_values);
-    /** Write profile-<step>.csv: one row per node of Γc (rank 0, from every rank's @p profile). */
-    void
-    write_profile(const unsigned int               step,
-                  const std::vector<ContactField> &fields,
-                  const std::vector<double>       &profile) const;
-    /**
-     * Create the output directory and remove what an earlier run wrote there
-     * (the files this program writes: solution, profiles, statistics, cycles,
-     * checkpoints), after the input was read; an error names the entry.
-     */
-    void
-    prepare_output_directory() const;
-    /** Write solution.pvd from pvd_records, atomically (rank 0). */
-    void
-    write_pvd() const;
-    /**
-     * Write the rigid obstacle's surface at time @p t, moved by its motion, as
-     * obstacle_<step>.vtu, and obstacle.pvd beside solution.pvd (rank 0;
-     * nothing for a deformable master).
-     */
-    void
-    write_obstacle(const unsigned int step, const double t) const;
-    /** The history fields of every material, each name once. */
-    std::vector<std::string>
-    history_field_names() const;
-    /** Cell averages of the Cauchy stress and of the material's history fields. */
-    void
-    compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
-                          std::vector<Tensor<2, 3>>           &cell_stress,
-                          std::vector<Vector<float>>          &cell_history_fields) const;
+    /** The cell averages of the stress and the history fields of the iterate @p u (ghosted). */
+    CellAverages
+    cell_averages(const TrilinosWrappers::MPI::Vector &u) const;
 
     MPI_Comm           mpi_communicator;
     ConditionalOStream pcout;
@@ -1790,10 +1738,11 @@ namespace StabilizedLagrangian
     /** The spaces FaceEvaluator reads, views of this problem's members. */
     const ContactSpaces<dim> spaces;
     /** which loops iterate, which are folded into Newton (LoopPolicy) */
-    LoopPolicy                                  loops;
-    std::string                                 parameters_used;
-    std::vector<std::pair<double, std::string>> pvd_records;
-    StatisticsWriter                            statistics;
+    LoopPolicy  loops;
+    std::string parameters_used;
+    /** the output files of the converged steps (VTU, profiles, obstacle, .pvd records) */
+    SolutionOutput<dim> solution_output;
+    StatisticsWriter    statistics;
     /** where the load stepping stands (LoadStepController works on it; a checkpoint keeps it) */
     LoadStepController::State controller;
     unsigned int              cycle = 0; ///< adaptive refinement cycle
