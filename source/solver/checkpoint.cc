@@ -486,7 +486,7 @@ namespace StabilizedLagrangian
             SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
           output_directory = cycle_directory(cycle);
           statistics.resume(output_directory, dim, root, statistics_supports(), statistics_state);
-          write_pvd();
+          solution_output.write_pvd(output_directory);
         }
       catch (const std::exception &e)
         {
@@ -526,49 +526,6 @@ namespace StabilizedLagrangian
           segments.push_back(face.segments->weight(q));
       }
     return segments;
-  }
-
-  template <int dim>
-  std::vector<double>
-  ContactProblem<dim>::accumulated_slip_list() const
-  {
-    // per node of Γc: key, step, then the sums
-    std::vector<double> slips;
-    for (const auto &[key, slip] : accumulated_slip)
-      {
-        slips.insert(slips.end(), key.begin(), key.end());
-        slips.push_back(slip.step);
-        for (const Tensor<1, dim> *sum : {&slip.before, &slip.total})
-          for (unsigned int d = 0; d < dim; ++d)
-            slips.push_back((*sum)[d]);
-        slips.push_back(slip.path_before);
-        slips.push_back(slip.path);
-      }
-    return slips;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::restore_accumulated_slip(const std::vector<double> &slips)
-  {
-    accumulated_slip.clear();
-    const unsigned int entry = 3 * dim + 3;
-    for (std::size_t i = 0; i < slips.size(); i += entry)
-      {
-        const double                 *values = slips.data() + i;
-        std::array<std::int64_t, dim> key;
-        for (unsigned int d = 0; d < dim; ++d)
-          key[d] = static_cast<std::int64_t>(values[d]);
-        AccumulatedSlip &slip = accumulated_slip[key];
-        slip.step             = static_cast<unsigned int>(values[dim]);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            slip.before[d] = values[dim + 1 + d];
-            slip.total[d]  = values[2 * dim + 1 + d];
-          }
-        slip.path_before = values[3 * dim + 1];
-        slip.path        = values[3 * dim + 2];
-      }
   }
 
   template <int dim>
@@ -620,9 +577,7 @@ namespace StabilizedLagrangian
   template void                ContactProblem<dim>::continue_outputs(unsigned long,                    \
                                                       const StatisticsWriter::State &); \
   template unsigned long       ContactProblem<dim>::cycles_log_bytes() const;                          \
-  template std::vector<double> ContactProblem<dim>::face_segments_list() const;                        \
-  template std::vector<double> ContactProblem<dim>::accumulated_slip_list() const;                     \
-  template void ContactProblem<dim>::restore_accumulated_slip(const std::vector<double> &);
+  template std::vector<double> ContactProblem<dim>::face_segments_list() const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

@@ -73,6 +73,7 @@ namespace StabilizedLagrangian
                n_multipliers,
                step_start,
                axisymmetric}
+      , solution_output(mpi_communicator, output_parameters)
   {
     Utilities::System::get_memory_stats(memory_at_start);
     loops = LoopPolicy(solver_parameters);

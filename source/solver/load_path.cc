@@ -29,7 +29,7 @@ namespace StabilizedLagrangian
     // the boundary names are checked by setup()
     setup();
     if (!resume)
-      prepare_output_directory();
+      solution_output.prepare_directory(output_directory);
     const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
     // the estimate of the restored (converged) state, which the cycle's row
     // and the summary report if the checkpoint ended the cycle's load path
@@ -199,7 +199,7 @@ namespace StabilizedLagrangian
     timer.reset();
     print_path_banner();
     if (!resumed)
-      output_results(0, 0.);
+      commit_converged_step(0, 0.);
 
     PathLog path(time, work);
     while (steps.before_end(time))
@@ -253,9 +253,9 @@ namespace StabilizedLagrangian
     if (root)
       std::filesystem::create_directories(output_directory);
     statistics.open(output_directory, dim, root, statistics_supports());
-    pvd_records.clear();
+    solution_output.set_records({});
     active_set.clear();
-    accumulated_slip.clear();
+    cumulative_slip.clear();
     steps.restart();
     path_start_work = work;
     last_step_size  = 0.;
@@ -343,7 +343,7 @@ namespace StabilizedLagrangian
     last_normal_force           = stats.normal_force;
     path.most_points_in_contact = std::max(path.most_points_in_contact, stats.points_in_contact);
     path.contact_point_count    = stats.contact_points;
-    output_results(stats.step, time);
+    commit_converged_step(stats.step, time);
     for (const auto index : locally_owned)
       last_increment(index) = solution(index) - step_start(index);
     last_increment.compress(VectorOperation::insert);
@@ -524,48 +524,52 @@ namespace StabilizedLagrangian
         iterative_solver ? iterative_solver->n_local_blocks() : 0u, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
-    std::ostringstream file;
-    file
-        << "dimension,cells,displacement_dofs,multiplier_dofs,mpi_ranks,r_n,r_t,load_steps,"
-           "newton_iterations,mean_newton_iterations_per_step,failed_attempt_newton_iterations,"
-           "assemblies,jacobian_assemblies,estimated_error_sqrtNmm,estimated_contact_error_sqrtNmm,"
-           "estimated_relative_error,peak_memory_MiB,wall_time_s,owned_dofs_min,owned_dofs_max,"
-           "ghost_dofs_max,weighted_complementarity";
+    SummaryRow table;
+    table.add("dimension", dim);
+    table.add("cells", triangulation.n_global_active_cells());
+    table.add("displacement_dofs", n_u);
+    table.add("multiplier_dofs", n_multipliers);
+    table.add("mpi_ranks", Utilities::MPI::n_mpi_processes(mpi_communicator));
+    table.add("r_n", chosen.r_n);
+    table.add("r_t", chosen.r_t);
+    table.add("load_steps", n_steps);
+    table.add("newton_iterations", statistics.cumulative_newton_iterations());
+    table.add("mean_newton_iterations_per_step",
+              static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps);
+    table.add("failed_attempt_newton_iterations", statistics.cumulative_failed_newton_iterations());
+    table.add("assemblies", path_work.assemblies);
+    table.add("jacobian_assemblies", path_work.jacobians);
+    table.add("estimated_error_sqrtNmm", last_step.estimated_error);
+    table.add("estimated_contact_error_sqrtNmm", last_step.estimated_contact_error);
+    table.add("estimated_relative_error", last_step.relative_error());
+    table.add("peak_memory_MiB", memory);
+    table.add("wall_time_s", wall_time);
+    table.add("owned_dofs_min", owned_min);
+    table.add("owned_dofs_max", owned_max);
+    table.add("ghost_dofs_max", ghosts_max);
+    table.add("weighted_complementarity", weighted_complementarity() ? 1 : 0);
     if (inf_sup_checked())
-      file << ",inf_sup_beta";
+      table.add("inf_sup_beta", inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
     // (with `automatic` also on the meshes it left to the direct solver: 0)
-    const bool krylov_columns =
-        linear_solver_parameters.iterative || linear_solver_parameters.automatic;
-    if (krylov_columns)
-      file << ",krylov_iterations,iterative_fallbacks,amg_setup_s,schur_complement_s,gmres_s,"
-              "schur_solves_s,schur_node_blocks";
+    if (linear_solver_parameters.iterative || linear_solver_parameters.automatic)
+      {
+        table.add("krylov_iterations", path_work.krylov_iterations);
+        table.add("iterative_fallbacks", path_work.iterative_fallbacks);
+        table.add("amg_setup_s", phase_max[0]);
+        table.add("schur_complement_s", phase_max[1]);
+        table.add("gmres_s", phase_max[2]);
+        table.add("schur_solves_s", phase_max[3]);
+        table.add("schur_node_blocks", schur_blocks);
+      }
     if (partner->n_faces() > 0)
-      file << ",master_faces,master_faces_held_max,master_search_growths";
-    for (const auto &entry : slowest)
-      file << ',' << std::regex_replace(entry.first, std::regex(" "), "_") << "_s";
-    file << '\n'
-         << dim << ',' << triangulation.n_global_active_cells() << ',' << n_u << ','
-         << n_multipliers << ',' << Utilities::MPI::n_mpi_processes(mpi_communicator) << ','
-         << chosen.r_n << ',' << chosen.r_t << ',' << n_steps << ','
-         << statistics.cumulative_newton_iterations() << ','
-         << static_cast<double>(statistics.cumulative_newton_iterations()) / n_steps << ','
-         << statistics.cumulative_failed_newton_iterations() << ',' << path_work.assemblies << ','
-         << path_work.jacobians << ',' << last_step.estimated_error << ','
-         << last_step.estimated_contact_error << ',' << last_step.relative_error() << ',' << memory
-         << ',' << wall_time << ',' << owned_min << ',' << owned_max << ',' << ghosts_max << ','
-         << (weighted_complementarity() ? 1 : 0);
-    if (inf_sup_checked())
-      file << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
-    if (krylov_columns)
-      file << ',' << path_work.krylov_iterations << ',' << path_work.iterative_fallbacks << ','
-           << phase_max[0] << ',' << phase_max[1] << ',' << phase_max[2] << ',' << phase_max[3]
-           << ',' << schur_blocks;
-    if (partner->n_faces() > 0)
-      file << ',' << partner->n_faces() << ',' << held << ',' << partner_dof_growths;
-    for (const auto &entry : slowest)
-      file << ',' << entry.second;
-    file << '\n';
-    SafeFiles::write_atomically(output_directory + "/run_summary.csv", file.str());
+      {
+        table.add("master_faces", partner->n_faces());
+        table.add("master_faces_held_max", held);
+        table.add("master_search_growths", partner_dof_growths);
+      }
+    for (const auto &[section, seconds] : slowest)
+      table.add(std::regex_replace(section, std::regex(" "), "_") + "_s", seconds);
+    SafeFiles::write_atomically(output_directory + "/run_summary.csv", table.csv());
   }
 
   template <int dim>

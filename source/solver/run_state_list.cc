@@ -271,13 +271,13 @@ namespace StabilizedLagrangian
     state_list.add(
         "accumulated slip",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(accumulated_slip_list()); },
+        [this](StateWriter &out) { out.put(cumulative_slip.list()); },
         [this](StateReader &in) -> std::function<void()> {
           std::vector<double> slips;
           in.get(slips, "accumulated slip values");
           if (!valid_slips<dim>(slips))
             in.damaged("its accumulated slip is not a list of whole, finite entries");
-          return [this, slips]() { restore_accumulated_slip(slips); };
+          return [this, slips]() { cumulative_slip.restore(slips); };
         });
   }
 
@@ -305,8 +305,9 @@ namespace StabilizedLagrangian
         "pvd records",
         Scope::checkpoint_only,
         [this](StateWriter &out) {
-          out.put(static_cast<std::uint64_t>(pvd_records.size()));
-          for (const auto &[t, file] : pvd_records)
+          const auto &records = solution_output.records();
+          out.put(static_cast<std::uint64_t>(records.size()));
+          for (const auto &[t, file] : records)
             {
               out.put(t);
               out.put(file);
@@ -323,7 +324,7 @@ namespace StabilizedLagrangian
               if (!std::isfinite(t) || !is_solution_record(record))
                 in.damaged("a .pvd record is not a time and a file solution_<step>.pvtu");
             }
-          return [this, records]() { pvd_records = records; };
+          return [this, records]() { solution_output.set_records(records); };
         });
     // the output files continue where the checkpoint was taken (after the .pvd records)
     state_list.add(

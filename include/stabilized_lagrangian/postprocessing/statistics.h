@@ -3,7 +3,9 @@
 #include <deal.II/base/types.h>
 
 #include <array>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace StabilizedLagrangian
@@ -97,6 +99,41 @@ namespace StabilizedLagrangian
     }
     double                       wall_time = 0.;
     std::vector<InnerLoopRecord> inner_loops;
+  };
+
+  /**
+   * @brief A CSV file of one row as a table (run_summary.csv): one column per
+   * add(), its name and its value as a stream writes it, so that a column is
+   * added in one place.
+   */
+  class SummaryRow
+  {
+  public:
+    /** @brief Add the column @p name showing @p value. */
+    template <typename Value>
+    void
+    add(const std::string &name, const Value &value)
+    {
+      std::ostringstream text;
+      text << value;
+      columns.emplace_back(name, text.str());
+    }
+
+    /** @brief The header line and the row. */
+    std::string
+    csv() const
+    {
+      std::string header, row;
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        {
+          header += (c > 0 ? "," : "") + columns[c].first;
+          row += (c > 0 ? "," : "") + columns[c].second;
+        }
+      return header + '\n' + row + '\n';
+    }
+
+  private:
+    std::vector<std::pair<std::string, std::string>> columns;
   };
 
   /**

@@ -26,6 +26,7 @@
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
+#include <stabilized_lagrangian/contact/cumulative_slip.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/partner.h>
@@ -37,6 +38,7 @@
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
@@ -734,11 +736,6 @@ namespace StabilizedLagrangian
     /** The contact faces' segment rules, as restore_segments() reads them. */
     std::vector<double>
     face_segments_list() const;
-    /** The accumulated slip per node of Γc: key, step, then the sums; and back. */
-    std::vector<double>
-    accumulated_slip_list() const;
-    void
-    restore_accumulated_slip(const std::vector<double> &slips);
 
     // --- run_state_list.cc: the run's state, listed once ---
     /** Add the problem's own state to the list, in the order it is read back. */
@@ -1456,96 +1453,27 @@ namespace StabilizedLagrangian
     double
     deformable_master_compliance() const;
 
-    // --- output.cc ---
-    void
-    output_results(const unsigned int step, const double time);
+    // --- converged_step.cc ---
     /**
-     * One contact output field: its VTU name, its profile columns and its
-     * evaluation at a point of Γc (a field is one entry of contact_fields()).
-     */
-    struct ContactField;
-    /** The contact output fields, in the order of the VTU's and the profile's. */
-    std::vector<ContactField>
-    contact_fields();
-    /**
-     * The slip accumulated at a node of Γc over the converged steps in which
-     * it was in contact: the vector sum of the steps' slip increments and the
-     * sum of their lengths (the slip path), up to the end of step `step`.
-     */
-    struct AccumulatedSlip
-    {
-      unsigned int   step = 0; ///< the last step added
-      Tensor<1, dim> before;   ///< the vector sum before that step
-      double         path_before = 0.;
-      Tensor<1, dim> total; ///< the vector sum with it
-      double         path = 0.;
-    };
-    /**
-     * The accumulated slip of the nodes of Γc, by reference position (in
-     * 1e-9 mm); cleared when a load path starts, kept by the checkpoint.
-     */
-    std::map<std::array<std::int64_t, dim>, AccumulatedSlip> accumulated_slip;
-    /** the load step whose output is being evaluated (the accumulated slip's) */
-    unsigned int output_step = 0;
-    /** The accumulated slip of the node at reference position @p X after step output_step. */
-    AccumulatedSlip &
-    accumulate_slip(const Point<dim> &X, const Tensor<1, dim> &increment, bool in_contact);
-    /**
-     * The values of @p fields at a point of Γc, from the converged iterate
-     * evaluated afresh; with weighted complementarity, the tractions and status
-     * of the point's nearest node, @p node.
-     */
-    std::vector<double>
-    contact_field_values(const std::vector<ContactField>       &fields,
-                         ContactKinematics<dim>                 k,
-                         const Contact::PointResponse<dim - 1> *node = nullptr) const;
-    /**
-     * Evaluate @p fields at the nodes of Γc: averaged at the vertices into
-     * @p vertex_values (a Q1 field of @p field_dofs), each node's reference
-     * coordinates and values appended to @p profile.
+     * A load step (or the initial state, step 0) converged: sample Γc at the
+     * iterate, commit the step's slip into cumulative_slip and write the output.
      */
     void
-    sample_contact_fields(const std::vector<ContactField> &fields,
-                          const DoFHandler<dim>           &field_dofs,
-                          TrilinosWrappers::MPI::Vector   &vertex_values,
-                          std::vector<double>             &profile) const;
-    /** Write the VTU of @p step with the contact fields, and list it in solution.pvd. */
+    commit_converged_step(const unsigned int step, const double time);
+    /** The converged state at the nodes of Γc, evaluated afresh at the iterate. */
+    std::vector<ContactSample<dim>>
+    sample_contact_surface();
+    /** the slip of Γc's nodes over the converged steps (a checkpoint keeps it) */
+    CumulativeSlip<dim> cumulative_slip;
+
+    /** Hand the output files of @p step the converged state and @p samples (SolutionOutput). */
     void
-    write_solution(const unsigned int                   step,
-                   const double                         time,
-                   const std::vector<ContactField>     &fields,
-                   const DoFHandler<dim>               &field_dofs,
-                   const TrilinosWrappers::MPI::Vector &vertex_values);
-    /** Write profile-<step>.csv: one row per node of Γc (rank 0, from every rank's @p profile). */
-    void
-    write_profile(const unsigned int               step,
-                  const std::vector<ContactField> &fields,
-                  const std::vector<double>       &profile) const;
-    /**
-     * Create the output directory and remove what an earlier run wrote there
-     * (the files this program writes: solution, profiles, statistics, cycles,
-     * checkpoints), after the input was read; an error names the entry.
-     */
-    void
-    prepare_output_directory() const;
-    /** Write solution.pvd from pvd_records, atomically (rank 0). */
-    void
-    write_pvd() const;
-    /**
-     * Write the rigid obstacle's surface at time @p t, moved by its motion, as
-     * obstacle_<step>.vtu, and obstacle.pvd beside solution.pvd (rank 0;
-     * nothing for a deformable master).
-     */
-    void
-    write_obstacle(const unsigned int step, const double t) const;
-    /** The history fields of every material, each name once. */
-    std::vector<std::string>
-    history_field_names() const;
-    /** Cell averages of the Cauchy stress and of the material's history fields. */
-    void
-    compute_cell_averages(const TrilinosWrappers::MPI::Vector &u,
-                          std::vector<Tensor<2, 3>>           &cell_stress,
-                          std::vector<Vector<float>>          &cell_history_fields) const;
+    output_results(const unsigned int                     step,
+                   const double                           time,
+                   const std::vector<ContactSample<dim>> &samples);
+    /** The cell averages of the stress and the history fields of the iterate @p u (ghosted). */
+    CellAverages
+    cell_averages(const TrilinosWrappers::MPI::Vector &u) const;
 
     MPI_Comm           mpi_communicator;
     ConditionalOStream pcout;
@@ -1794,10 +1722,11 @@ namespace StabilizedLagrangian
     /** The spaces FaceEvaluator reads, views of this problem's members. */
     const ContactSpaces<dim> spaces;
     /** which loops iterate, which are folded into Newton (LoopPolicy) */
-    LoopPolicy                                  loops;
-    std::string                                 parameters_used;
-    std::vector<std::pair<double, std::string>> pvd_records;
-    StatisticsWriter                            statistics;
+    LoopPolicy  loops;
+    std::string parameters_used;
+    /** the output files of the converged steps (VTU, profiles, obstacle, .pvd records) */
+    SolutionOutput<dim> solution_output;
+    StatisticsWriter    statistics;
     /** where the load stepping stands (LoadStepController works on it; a checkpoint keeps it) */
     LoadStepController::State controller;
     unsigned int              cycle = 0; ///< adaptive refinement cycle
