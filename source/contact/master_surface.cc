@@ -1,3 +1,9 @@
+// The master surface of a second deformable body (doc/formulation.md, "Two
+// deformable bodies"): its faces as their owners describe them, the faces a
+// rank holds, their deformed geometry and the pairing's DoFs and derivatives.
+// The contact search over the held faces (R-tree, gathering, closest-point
+// projection) is in master_surface_search.cc.
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/geometry_info.h>
 
@@ -39,40 +45,56 @@ namespace StabilizedLagrangian
       }
 
       /**
-       * The bounding box of a face's nodes @p points, with room for the
-       * curvature of higher-order faces between their nodes.
+       * The node of @p node_element (FE_Q<dim−1>) at the support point of
+       * each DoF of a face of @p fe: the face's DoFs in the node-major order
+       * of a master face.
        */
       template <int dim>
-      BoundingBox<dim>
-      padded_box(const std::vector<Point<dim>> &points)
+      std::vector<unsigned int>
+      node_of_face_dofs(const FiniteElement<dim> &fe, const FE_Q<dim - 1> &node_element)
       {
-        BoundingBox<dim> box(points);
-        const auto &[low, high] = box.get_boundary_points();
-        box.extend(0.1 * low.distance(high));
-        return box;
+        const std::vector<Point<dim - 1>> &face_points = fe.get_unit_face_support_points();
+        const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
+        std::vector<unsigned int>          node_of(fe.n_dofs_per_face());
+        for (unsigned int i = 0; i < node_of.size(); ++i)
+          {
+            node_of[i] = numbers::invalid_unsigned_int;
+            for (unsigned int k = 0; k < node_element.n_dofs_per_cell(); ++k)
+              if (face_points[i].distance(node_points[k]) < 1e-10)
+                node_of[i] = k;
+            AssertThrow(node_of[i] != numbers::invalid_unsigned_int, ExcInternalError());
+          }
+        return node_of;
       }
 
-      /** True when the boxes @p a and @p b share a point. */
-      template <int dim>
-      bool
-      boxes_meet(const BoundingBox<dim> &a, const BoundingBox<dim> &b)
-      {
-        for (unsigned int d = 0; d < dim; ++d)
-          if (a.lower_bound(d) > b.upper_bound(d) || b.lower_bound(d) > a.upper_bound(d))
-            return false;
-        return true;
-      }
-
-      /** Squared distance from @p x to the box @p box (0 inside). */
+      /**
+       * ±1: the sign that turns the normal of the face's own parametrisation
+       * by its @p vertices (at its centre) outward, away from the centre
+       * @p cell_center of its cell; @p face_center is the face's centre.
+       */
       template <int dim>
       double
-      squared_distance(const BoundingBox<dim> &box, const Point<dim> &x)
+      outward_sign(const std::vector<Point<dim>> &vertices,
+                   const Point<dim>              &face_center,
+                   const Point<dim>              &cell_center)
       {
-        const auto &[low, high] = box.get_boundary_points();
-        double result           = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
-          result += Utilities::fixed_power<2>(std::max({0., low[d] - x[d], x[d] - high[d]}));
-        return result;
+        Point<dim - 1> centre;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          centre[a] = 0.5;
+        Tensor<1, dim> dX[dim - 1];
+        for (unsigned int v = 0; v < vertices.size(); ++v)
+          {
+            Tensor<1, dim - 1> gradient;
+            vertex_weight<dim>(v, centre, gradient);
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              dX[a] += gradient[a] * vertices[v];
+          }
+        Tensor<1, dim> n;
+        if constexpr (dim == 2)
+          n = Tensor<1, dim>({dX[0][1], -dX[0][0]});
+        else
+          n = cross_product_3d(dX[0], dX[1]);
+        return n * (face_center - cell_center) > 0. ? 1. : -1.;
       }
     } // namespace
 
@@ -90,28 +112,32 @@ namespace StabilizedLagrangian
         , surface_dofs(dof_handler.n_dofs())
     {
       AssertThrow(search_distance > 0., ExcInternalError());
-      const FiniteElement<dim> &fe = dof_handler.get_fe();
       // a face is multilinear in its 2^(dim-1) vertices; every rank has the same
       // element, so every rank refuses together
-      if (!fe.reference_cell().face_reference_cell(0).is_hyper_cube())
+      if (!dof_handler.get_fe().reference_cell().face_reference_cell(0).is_hyper_cube())
         throw InputError("Contact/Master boundary ids: contact between two deformable bodies "
                          "meshed with tetrahedra needs a master surface of triangle faces, which "
                          "is not built yet (the master surface holds line and quadrilateral "
                          "faces); in 3D mesh the bodies with hexahedra.");
-      // the node of FE_Q<dim−1> at each face DoF's support point
-      const std::vector<Point<dim - 1>> &face_points = fe.get_unit_face_support_points();
-      const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
-      std::vector<unsigned int>          node_of(fe.n_dofs_per_face());
-      for (unsigned int i = 0; i < node_of.size(); ++i)
+      collect_owned_faces(dof_handler, boundary_ids);
+      number_owned_faces();
+      if (replicated)
         {
-          node_of[i] = numbers::invalid_unsigned_int;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            if (face_points[i].distance(node_points[k]) < 1e-10)
-              node_of[i] = k;
-          AssertThrow(node_of[i] != numbers::invalid_unsigned_int, ExcInternalError());
+          std::vector<FaceRecord> all;
+          for (const auto &part : Utilities::MPI::all_gather(communicator, pack(owned_faces)))
+            for (const auto &record : unpack(part))
+              all.push_back(record);
+          hold(all);
         }
+    }
 
-      // this rank's faces: vertices, sign and DoFs
+    template <int dim>
+    void
+    MasterSurface<dim>::collect_owned_faces(const DoFHandler<dim>              &dof_handler,
+                                            const std::set<types::boundary_id> &boundary_ids)
+    {
+      const FiniteElement<dim>            &fe      = dof_handler.get_fe();
+      const std::vector<unsigned int>      node_of = node_of_face_dofs(fe, node_element);
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -126,28 +152,17 @@ namespace StabilizedLagrangian
                 for (unsigned int i = 0; i < dofs.size(); ++i)
                   record.dofs[node_of[i] * dim + fe.face_system_to_component_index(i).first] =
                       dofs[i];
-                // the normal of the face's own parametrisation against the outward direction
-                Point<dim - 1> centre;
-                for (unsigned int a = 0; a < dim - 1; ++a)
-                  centre[a] = 0.5;
-                Tensor<1, dim> dX[dim - 1];
                 for (unsigned int v = 0; v < n_vertices; ++v)
-                  {
-                    Tensor<1, dim - 1> gradient;
-                    vertex_weight<dim>(v, centre, gradient);
-                    for (unsigned int a = 0; a < dim - 1; ++a)
-                      dX[a] += gradient[a] * face->vertex(v);
-                    record.vertices.push_back(face->vertex(v));
-                  }
-                Tensor<1, dim> n;
-                if constexpr (dim == 2)
-                  n = Tensor<1, dim>({dX[0][1], -dX[0][0]});
-                else
-                  n = cross_product_3d(dX[0], dX[1]);
-                record.sign = n * (face->center() - cell->center()) > 0. ? 1. : -1.;
+                  record.vertices.push_back(face->vertex(v));
+                record.sign = outward_sign<dim>(record.vertices, face->center(), cell->center());
                 owned_faces.push_back(record);
               }
+    }
 
+    template <int dim>
+    void
+    MasterSurface<dim>::number_owned_faces()
+    {
       // global ids: the owner's offset plus the place among its faces
       const std::vector<unsigned int> counts =
           Utilities::MPI::all_gather(communicator, static_cast<unsigned int>(owned_faces.size()));
@@ -156,15 +171,16 @@ namespace StabilizedLagrangian
       const unsigned int offset = std::accumulate(counts.begin(), counts.begin() + rank, 0u);
       for (unsigned int i = 0; i < owned_faces.size(); ++i)
         owned_faces[i].id = offset + i;
+    }
 
-      if (replicated)
-        {
-          std::vector<FaceRecord> all;
-          for (const auto &part : Utilities::MPI::all_gather(communicator, pack(owned_faces)))
-            for (const auto &record : unpack(part))
-              all.push_back(record);
-          hold(all);
-        }
+    template <int dim>
+    BoundingBox<dim>
+    MasterSurface<dim>::padded_box(const std::vector<Point<dim>> &points)
+    {
+      BoundingBox<dim> box(points);
+      const auto &[low, high] = box.get_boundary_points();
+      box.extend(0.1 * low.distance(high));
+      return box;
     }
 
     template <int dim>
@@ -291,96 +307,6 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
-    bool
-    MasterSurface<dim>::gather_faces_near(const std::vector<BoundingBox<dim>> &region,
-                                          const TrilinosWrappers::MPI::Vector *u)
-    {
-      if (replicated)
-        return false;
-      // every rank's slave region, 2 d around
-      std::vector<double> corners;
-      for (const auto &box : region)
-        for (const Point<dim> &corner :
-             {box.get_boundary_points().first, box.get_boundary_points().second})
-          for (unsigned int d = 0; d < dim; ++d)
-            corners.push_back(corner[d]);
-      std::vector<std::pair<BoundingBox<dim>, unsigned int>> regions;
-      const auto all_corners = Utilities::MPI::all_gather(communicator, corners);
-      for (unsigned int rank = 0; rank < all_corners.size(); ++rank)
-        for (unsigned int b = 0; b < all_corners[rank].size(); b += 2 * dim)
-          {
-            Point<dim> low, high;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                low[d]  = all_corners[rank][b + d];
-                high[d] = all_corners[rank][b + dim + d];
-              }
-            BoundingBox<dim> box({low, high});
-            box.extend(2. * search_distance);
-            regions.emplace_back(box, rank);
-          }
-      const auto region_tree = pack_rtree(regions);
-
-      // this rank's faces to every rank whose region they meet
-      namespace bgi = boost::geometry::index;
-      std::map<unsigned int, std::vector<FaceRecord>> to_ranks;
-      for (FaceRecord &record : owned_faces)
-        {
-          record.box = deformed_box(record, u);
-          std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-          region_tree.query(bgi::intersects(record.box), std::back_inserter(hits));
-          std::set<unsigned int> ranks;
-          for (const auto &hit : hits)
-            ranks.insert(hit.second);
-          for (const unsigned int rank : ranks)
-            to_ranks[rank].push_back(record);
-        }
-      std::map<unsigned int, PackedFaces> to_send;
-      for (const auto &[rank, records] : to_ranks)
-        to_send[rank] = pack(records);
-
-      // a face within d of the region that is not held yet: take all those within 2 d
-      std::vector<FaceRecord> fresh;
-      bool                    missing = false;
-      for (const auto &[rank, packed] : Utilities::MPI::some_to_some(communicator, to_send))
-        for (const FaceRecord &record : unpack(packed))
-          if (slots.count(record.id) == 0)
-            {
-              fresh.push_back(record);
-              for (BoundingBox<dim> box : region)
-                {
-                  box.extend(search_distance);
-                  missing = missing || boxes_meet(box, record.box);
-                }
-            }
-      if (missing)
-        hold(fresh);
-      return Utilities::MPI::logical_or(missing, communicator);
-    }
-
-    template <int dim>
-    void
-    MasterSurface<dim>::update_configuration(const TrilinosWrappers::MPI::Vector &u)
-    {
-      std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
-      boxes.reserve(face_ids.size());
-      const std::vector<Point<dim - 1>> &node_points = node_element.get_unit_support_points();
-      for (unsigned int f = 0; f < face_ids.size(); ++f)
-        {
-          std::vector<Point<dim>> points;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            {
-              Tensor<1, dim> &u_k = node_displacements[f * n_nodes + k];
-              for (unsigned int d = 0; d < dim; ++d)
-                u_k[d] = u(face_dofs[(f * n_nodes + k) * dim + d]);
-              points.push_back(reference_point(f, node_points[k]) + u_k);
-            }
-          boxes.emplace_back(padded_box(points), f);
-        }
-      tree = pack_rtree(boxes);
-    }
-
-    template <int dim>
     Point<dim>
     MasterSurface<dim>::reference_point(const unsigned int face, const Point<dim - 1> &xi) const
     {
@@ -431,108 +357,6 @@ namespace StabilizedLagrangian
       else
         n = cross_product_3d(dx[0], dx[1]);
       return face_sign[face] * n / n.norm();
-    }
-
-    template <int dim>
-    Pairing<dim>
-    MasterSurface<dim>::project(const Point<dim> &x) const
-    {
-      namespace bgi = boost::geometry::index;
-      if (face_ids.empty())
-        {
-          // no master face within the search distance: an open pairing that far
-          Pairing<dim> pairing;
-          pairing.normal[dim - 1] = 1.;
-          pairing.master_point    = x - search_distance * pairing.normal;
-          pairing.tangents        = tangent_basis(pairing.normal);
-          return pairing;
-        }
-      double         best_distance = std::numeric_limits<double>::max();
-      unsigned int   best_face     = 0;
-      Point<dim - 1> best_xi;
-      // candidates by increasing distance to their boxes, until no box is
-      // closer than the best projection found
-      for (auto it = tree.qbegin(bgi::nearest(x, n_held_faces())); it != tree.qend(); ++it)
-        {
-          if (std::sqrt(squared_distance(it->first, x)) > best_distance)
-            break;
-          const unsigned int face = it->second;
-          Point<dim - 1>     xi;
-          for (unsigned int a = 0; a < dim - 1; ++a)
-            xi[a] = 0.5;
-          // Gauss–Newton on |x(ξ) − x|², ξ kept in the reference face
-          Tensor<1, dim> dx[dim - 1];
-          for (unsigned int iteration = 0; iteration < 50; ++iteration)
-            {
-              const Tensor<1, dim> r = position(face, xi, dx) - x;
-              Tensor<2, dim - 1>   JtJ;
-              Tensor<1, dim - 1>   Jtr;
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                {
-                  Jtr[a] = dx[a] * r;
-                  for (unsigned int b = 0; b < dim - 1; ++b)
-                    JtJ[a][b] = dx[a] * dx[b];
-                }
-              Tensor<1, dim - 1> step = -(invert(JtJ) * Jtr);
-              // A coordinate at the face's edge whose step leaves the face is
-              // held there and the others minimise along the edge (projected
-              // Gauss–Newton): clamping the full step instead would stop where
-              // τ_b·(x(ξ) − x) ≠ 0 on a face whose tangents are not orthogonal.
-              bool held[dim - 1], any_held = false;
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                {
-                  held[a] = (xi[a] <= 0. && step[a] < 0.) || (xi[a] >= 1. && step[a] > 0.);
-                  any_held |= held[a];
-                }
-              if (any_held)
-                for (unsigned int a = 0; a < dim - 1; ++a)
-                  step[a] = held[a] ? 0. : -Jtr[a] / JtJ[a][a];
-              Point<dim - 1> next = xi + step;
-              for (unsigned int a = 0; a < dim - 1; ++a)
-                next[a] = std::clamp(next[a], 0., 1.);
-              const double change = next.distance(xi);
-              xi                  = next;
-              if (change < 1e-13)
-                break;
-            }
-          const double distance = position(face, xi, dx).distance(x);
-          // ties (a shared vertex or edge) to the smaller id, whatever the order faces are held in
-          if (distance < best_distance ||
-              (distance == best_distance && face_ids[face] < face_ids[best_face]))
-            {
-              best_distance = distance;
-              best_face     = face;
-              best_xi       = xi;
-            }
-        }
-      Pairing<dim>   pairing;
-      Tensor<1, dim> dx[dim - 1];
-      pairing.master_point           = position(best_face, best_xi, dx);
-      pairing.normal                 = normal(best_face, dx);
-      pairing.tangents               = tangent_basis(pairing.normal);
-      pairing.master_face            = static_cast<int>(face_ids[best_face]);
-      pairing.master_reference_point = best_xi;
-      return pairing;
-    }
-
-    template <int dim>
-    std::vector<Point<dim>>
-    MasterSurface<dim>::vertices_near(const BoundingBox<dim> &box) const
-    {
-      namespace bgi = boost::geometry::index;
-      std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-      tree.query(bgi::intersects(box), std::back_inserter(hits));
-      std::vector<Point<dim>> vertices;
-      Tensor<1, dim>          dx[dim - 1];
-      for (const auto &hit : hits)
-        for (unsigned int v = 0; v < n_vertices; ++v)
-          {
-            Point<dim - 1> corner;
-            for (unsigned int a = 0; a < dim - 1; ++a)
-              corner[a] = (v >> a) & 1;
-            vertices.push_back(position(hit.second, corner, dx));
-          }
-      return vertices;
     }
 
     template <int dim>

@@ -207,6 +207,22 @@ namespace StabilizedLagrangian
       std::vector<FaceRecord>
       unpack(const PackedFaces &packed) const;
 
+      /**
+       * @brief This rank's faces of @p dof_handler's mesh on the boundaries
+       * @p boundary_ids, into owned_faces: their vertices, their DoFs
+       * (node-major) and the sign that orients their normal outward.
+       */
+      void
+      collect_owned_faces(const DoFHandler<dim>              &dof_handler,
+                          const std::set<types::boundary_id> &boundary_ids);
+
+      /**
+       * @brief Number the faces globally (collective): the owner's offset
+       * plus the place among its faces, the same on every rank.
+       */
+      void
+      number_owned_faces();
+
       /** @brief Hold the faces @p records (not held yet), and index all held faces anew. */
       void
       hold(const std::vector<FaceRecord> &records);
@@ -239,6 +255,21 @@ namespace StabilizedLagrangian
       position(const unsigned int    face,
                const Point<dim - 1> &xi,
                Tensor<1, dim> (&dx)[dim - 1]) const;
+
+      /**
+       * @brief The reference point ξ of held face @p face closest to @p x in
+       * the deformed configuration: projected Gauss–Newton on |x(ξ) − x|²,
+       * ξ kept in the reference face.
+       */
+      Point<dim - 1>
+      closest_point_on_face(const unsigned int face, const Point<dim> &x) const;
+
+      /**
+       * @brief The bounding box of a face's nodes @p points, with room for
+       * the curvature of higher-order faces between their nodes.
+       */
+      static BoundingBox<dim>
+      padded_box(const std::vector<Point<dim>> &points);
 
       /** Outward unit normal from the derivatives ∂x/∂ξ_a of held face @p face. */
       Tensor<1, dim>
