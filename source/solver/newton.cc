@@ -1,8 +1,15 @@
+// The Newton iteration of a load step (doc/formulation.md, "Stopping
+// criteria", "Adaptive stopping"): the loop, the tangent predictor, the
+// measure of an iterate, the linear solve of the Newton system and what is
+// done when it is singular. The line search that moves the iterate along an
+// update is in newton_line_search.cc.
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 
 #include <cmath>
@@ -12,42 +19,71 @@
 
 namespace StabilizedLagrangian
 {
+  namespace
+  {
+    /**
+     * The forcing term η_k of an inexact Newton step, Eisenstat–Walker (1996)
+     * choice 2: η_k = γ (|F_k| / |F_k−1|)² with γ = 0.9, safeguarded by
+     * γ η_k−1² where that is above 0.1; @p maximum at the first iteration or
+     * without a positive previous residual @p previous_residual.
+     * @p residual is |F_k|, @p previous_forcing η_k−1.
+     */
+    double
+    eisenstat_walker_forcing(const double residual,
+                             const double previous_residual,
+                             const double previous_forcing,
+                             const bool   first_iteration,
+                             const double maximum)
+    {
+      double forcing = maximum;
+      if (!first_iteration && std::isfinite(previous_residual) && previous_residual > 0.)
+        {
+          const double gamma = 0.9;
+          forcing            = gamma * std::pow(residual / previous_residual, 2);
+          if (gamma * previous_forcing * previous_forcing > 0.1)
+            forcing = std::max(forcing, gamma * previous_forcing * previous_forcing);
+        }
+      return forcing;
+    }
+
+    /**
+     * Solve the Newton system @p matrix @p update = @p rhs by GMRES to the
+     * relative tolerance @p forcing in the norm weighted by @p row_weights,
+     * and add the solver's iterations and phase times to @p work. False, with
+     * the reason printed, when GMRES does not reach the tolerance: the
+     * direct solver then takes the system.
+     */
+    bool
+    solve_by_gmres(LinearSolvers::BlockIterativeSolver  &solver,
+                   const TrilinosWrappers::SparseMatrix &matrix,
+                   TrilinosWrappers::MPI::Vector        &update,
+                   const TrilinosWrappers::MPI::Vector  &rhs,
+                   const TrilinosWrappers::MPI::Vector  &row_weights,
+                   const double                          forcing,
+                   WorkCounters                         &work,
+                   const ConditionalOStream             &pcout)
+    {
+      const bool solved = solver.solve(matrix, update, rhs, row_weights, forcing);
+      work.krylov_iterations += solver.last_iterations();
+      work.amg_setup_seconds += solver.last_times().amg_setup;
+      work.schur_seconds += solver.last_times().schur;
+      work.krylov_seconds += solver.last_times().krylov;
+      work.schur_solve_seconds += solver.last_times().schur_solves;
+      if (!solved)
+        {
+          pcout << "  Newton: " << solver.last_error()
+                << "; this system is solved by the direct solver\n";
+          ++work.iterative_fallbacks;
+        }
+      return solved;
+    }
+  } // namespace
+
   template <int dim>
   std::vector<unsigned char>
   ContactProblem<dim>::point_statuses()
   {
     return conditions->statuses();
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::ActiveSetWatch::settling(ContactProblem<dim> &problem)
-  {
-    // Frictionless contact (no point sticks), the contact statuses of a full
-    // step are new (no iterate of this Newton loop had them, so the step does
-    // not close a cycle among the finitely many active sets) and fewer points
-    // open or close than at the last step taken so: the active set settles,
-    // as in the active set method on the normal condition, which converges
-    // without damping. Coulomb's stick/slip switches have no such result (a
-    // full step there wanders among the statuses), and stay with the
-    // backtracking.
-    const auto                        stick    = static_cast<unsigned char>(Contact::Status::stick);
-    const auto                        open     = static_cast<unsigned char>(Contact::Status::open);
-    const std::vector<unsigned char>  statuses = problem.point_statuses();
-    const std::vector<unsigned char> &current  = seen.back();
-    unsigned int                      changes = 0, sticking = 0;
-    for (unsigned int p = 0; p < statuses.size(); ++p)
-      {
-        changes += (statuses[p] == open) != (current[p] == open);
-        sticking += statuses[p] == stick || current[p] == stick;
-      }
-    changes  = Utilities::MPI::sum(changes, problem.mpi_communicator);
-    sticking = Utilities::MPI::sum(sticking, problem.mpi_communicator);
-    if (sticking > 0 || changes == 0 || changes > last_changes ||
-        problem.first_equal(seen, statuses, seen.size()) < seen.size())
-      return false;
-    last_changes = changes;
-    return true;
   }
 
   template <int dim>
@@ -214,39 +250,25 @@ namespace StabilizedLagrangian
       if (iterative_solver)
         {
           // a tenth of the reduction that meets the Newton tolerance now, or
-          // Eisenstat–Walker (1996) choice 2: η_k = γ (|F_k| / |F_k−1|)²,
-          // safeguarded by γ η_k−1² where that is above 0.1
+          // Eisenstat–Walker's forcing term
           const double maximum = linear_solver_parameters.maximum_forcing_term;
           double       forcing = 0.1 * progress.needed_reduction;
           if (linear_solver_parameters.eisenstat_walker)
-            {
-              const double residual = residual_norm();
-              forcing               = maximum;
-              if (progress.iteration > 0 && std::isfinite(progress.previous_residual) &&
-                  progress.previous_residual > 0.)
-                {
-                  const double gamma = 0.9;
-                  forcing            = gamma * std::pow(residual / progress.previous_residual, 2);
-                  if (gamma * progress.forcing_term * progress.forcing_term > 0.1)
-                    forcing =
-                        std::max(forcing, gamma * progress.forcing_term * progress.forcing_term);
-                }
-            }
+            forcing = eisenstat_walker_forcing(residual_norm(),
+                                               progress.previous_residual,
+                                               progress.forcing_term,
+                                               progress.iteration == 0,
+                                               maximum);
           forcing               = std::clamp(forcing, 1e-10, maximum);
           progress.forcing_term = forcing;
-          solved =
-              iterative_solver->solve(system_matrix, update, system_rhs, residual_scaling, forcing);
-          work.krylov_iterations += iterative_solver->last_iterations();
-          work.amg_setup_seconds += iterative_solver->last_times().amg_setup;
-          work.schur_seconds += iterative_solver->last_times().schur;
-          work.krylov_seconds += iterative_solver->last_times().krylov;
-          work.schur_solve_seconds += iterative_solver->last_times().schur_solves;
-          if (!solved)
-            {
-              pcout << "  Newton: " << iterative_solver->last_error()
-                    << "; this system is solved by the direct solver\n";
-              ++work.iterative_fallbacks;
-            }
+          solved                = solve_by_gmres(*iterative_solver,
+                                  system_matrix,
+                                  update,
+                                  system_rhs,
+                                  residual_scaling,
+                                  forcing,
+                                  work,
+                                  pcout);
         }
       if (!solved)
         solved = direct_solver->solve(system_matrix, update, system_rhs);
@@ -496,66 +518,6 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::advance(NewtonProgress                      &progress,
-                               const TrilinosWrappers::MPI::Vector &update,
-                               const double                         residual,
-                               const unsigned int                   max_halvings)
-  {
-    line_search(
-        update, residual, progress.previous_residual, max_halvings, progress.active_set_watch());
-    progress.previous_residual = residual;
-    progress.jacobian_current  = false;
-    ++progress.iteration;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
-                                   const double                         residual,
-                                   const double                         previous_residual,
-                                   const unsigned int                   max_halvings,
-                                   ActiveSetWatch                      *watch)
-  {
-    // Non-monotone backtracking. With frozen statuses the residual is only
-    // piecewise smooth (stick/slip in P_B, elastic/plastic switches at the
-    // quadrature points), so a full Newton step may raise the residual on the
-    // way to convergence; it is kept when the residual is below that of the
-    // iterate before the current one. Otherwise (a cycle, or a material point
-    // outside its admissible range) the step is halved until the residual
-    // decreases, at most max_halvings times.
-    //
-    // When Newton decides the contact statuses, its full step is that of the
-    // primal-dual active set method (Hintermüller, Ito & Kunisch 2002; Hüeber,
-    // Stadler & Wohlmuth 2008), whose residual rises while the active set is
-    // being found (the iterate solves the equations of a set that is not yet
-    // the right one). That step is taken whole while the active set settles
-    // (ActiveSetWatch::settling).
-    const TrilinosWrappers::MPI::Vector start = solution;
-    double                              step  = 1.;
-    for (unsigned int halving = 0;; ++halving)
-      {
-        solution = start;
-        solution.add(step, update);
-        update_ghosts();
-        assemble_newton_system(false);
-        if (output_parameters.log_newton)
-          log_trial(step);
-        if (halving == max_halvings)
-          return;
-        if (inadmissible_state.empty())
-          {
-            if (halving == 0 && watch != nullptr && watch->settling(*this))
-              return;
-            const double reference = halving == 0 ? previous_residual : residual;
-            if (residual_norm() < (1. - 1e-4 * step) * reference)
-              return;
-          }
-        step /= 2.;
-      }
-  }
-
-  template <int dim>
-  void
   ContactProblem<dim>::log_iterate(const unsigned int iteration) const
   {
     const ScaledResidual scaled = scaled_residual();
@@ -566,53 +528,32 @@ namespace StabilizedLagrangian
     pcout << line.str();
   }
 
-  template <int dim>
-  void
-  ContactProblem<dim>::log_trial(const double step)
-  {
-    unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
-    for (const unsigned char status : point_statuses())
-      ++counts[status];
-    std::ostringstream line;
-    line << std::setprecision(6) << "      step length " << step << ": residual " << residual_norm()
-         << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
-         << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
-         << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
-         << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
-    pcout << line.str();
-  }
-
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                          \
-  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                         \
-  template bool                       ContactProblem<dim>::newton_loop(                              \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);             \
-  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);           \
-  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);           \
-  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                      \
-  template bool   ContactProblem<dim>::below_discretisation_error(double, double);                   \
-  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &)    \
-      const;                                                                                         \
-  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                        \
-                                                      NewtonProgress &,                              \
-                                                      const NewtonMeasure &,                         \
-                                                      TrilinosWrappers::MPI::Vector &);              \
-  template bool ContactProblem<dim>::may_iterate(                                                    \
-      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                        \
-  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                              \
-                                                      TrilinosWrappers::MPI::Vector &);              \
-  template void ContactProblem<dim>::advance(                                                        \
-      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);                \
-  template void ContactProblem<dim>::line_search(                                                    \
-      const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *);        \
-  template bool                                        ContactProblem<dim>::start_holding_contact(); \
-  template typename ContactProblem<dim>::ContactCensus ContactProblem<dim>::contact_census();        \
-  template bool ContactProblem<dim>::fold_friction_for_slipping_contact();                           \
-  template void ContactProblem<dim>::report_near_singular(const std::string &);                      \
-  template bool ContactProblem<dim>::plausible_converged_state() const;                              \
-  template void ContactProblem<dim>::log_iterate(unsigned int) const;                                \
-  template void ContactProblem<dim>::log_trial(double);
+#define SL_INSTANTIATE(dim)                                                                       \
+  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                      \
+  template bool                       ContactProblem<dim>::newton_loop(                           \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);          \
+  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);        \
+  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);        \
+  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                   \
+  template bool   ContactProblem<dim>::below_discretisation_error(double, double);                \
+  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &) \
+      const;                                                                                      \
+  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                     \
+                                                      NewtonProgress &,                           \
+                                                      const NewtonMeasure &,                      \
+                                                      TrilinosWrappers::MPI::Vector &);           \
+  template bool ContactProblem<dim>::may_iterate(                                                 \
+      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                     \
+  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                           \
+                                                      TrilinosWrappers::MPI::Vector &);           \
+  template bool ContactProblem<dim>::start_holding_contact();                                     \
+  template typename ContactProblem<dim>::ContactCensus ContactProblem<dim>::contact_census();     \
+  template bool ContactProblem<dim>::fold_friction_for_slipping_contact();                        \
+  template void ContactProblem<dim>::report_near_singular(const std::string &);                   \
+  template bool ContactProblem<dim>::plausible_converged_state() const;                           \
+  template void ContactProblem<dim>::log_iterate(unsigned int) const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)
