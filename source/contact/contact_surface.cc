@@ -40,25 +40,41 @@ namespace StabilizedLagrangian
     const auto m_cell = spaces.multiplier_cell(face.cell);
     m_values->reinit(m_cell, face.face_no);
     face.cell->get_dof_indices(u_dofs);
+    gather_multipliers(m_cell, face.face_no, ghosted);
+    evaluate_multiplier_shapes(nodal_coefficients ? nullptr : face.dual_basis.get());
+    evaluate_displacements(ghosted);
+  }
 
+  template <int dim>
+  void
+  FaceEvaluator<dim>::gather_multipliers(
+      const typename DoFHandler<dim>::active_cell_iterator &m_cell,
+      const unsigned int                                    face_no,
+      const TrilinosWrappers::MPI::Vector                  &ghosted)
+  {
     std::vector<types::global_dof_index> all_m(spaces.fe_m->n_dofs_per_cell());
     m_cell->get_dof_indices(all_m);
     m_dofs.clear();
     m_local.clear();
     m_coefficients.clear();
-    for (const unsigned int i : spaces.multiplier_dofs_on_face[face.face_no])
+    for (const unsigned int i : spaces.multiplier_dofs_on_face[face_no])
       {
         Assert(all_m[i] < spaces.n_multipliers, ExcInternalError());
         m_local.push_back(i);
         m_dofs.push_back(spaces.n_u + all_m[i]);
         m_coefficients.push_back(ghosted(spaces.n_u + all_m[i]));
       }
+  }
+
+  template <int dim>
+  void
+  FaceEvaluator<dim>::evaluate_multiplier_shapes(const FullMatrix<double> *dual)
+  {
     // ψ_a at the points: φ_a, or with a dual basis Σ_r A_pr φ_(r, c) (p the
     // node of a, c its component; the nodes in ascending base index)
     const unsigned int n_m = m_local.size();
     m_shapes.reinit(n_m, u_now.size());
-    const FullMatrix<double> *dual = nodal_coefficients ? nullptr : face.dual_basis.get();
-    std::vector<unsigned int> node_of(n_m);
+    std::vector<unsigned int>              node_of(n_m);
     std::vector<std::vector<unsigned int>> of_node;
     if (dual)
       {
@@ -88,7 +104,12 @@ namespace StabilizedLagrangian
               value += (*dual)(node_of[a], r) * m_values->shape_value(m_local[of_node[r][c]], q);
             m_shapes(a, q) = value;
           }
+  }
 
+  template <int dim>
+  void
+  FaceEvaluator<dim>::evaluate_displacements(const TrilinosWrappers::MPI::Vector &ghosted)
+  {
     const FiniteElement<dim> &fe = *spaces.fe_u;
     for (unsigned int q = 0; q < u_now.size(); ++q)
       {

@@ -39,6 +39,44 @@ namespace StabilizedLagrangian
                          "section of the solid of revolution).");
       return axisymmetric;
     }
+
+    /** The obstacle's prescribed motion, `Obstacle/Motion`, as parsed. */
+    template <int dim> struct ParsedObstacleMotion
+    {
+      std::shared_ptr<Parameters::BoundaryFunction<dim>> translation;
+      /** null for an angle of 0 (the default): no rotation */
+      std::shared_ptr<Parameters::BoundaryFunction<dim>> rotation;
+      Point<dim>                                         rotation_centre;
+    };
+
+    /** Parse `Obstacle/Motion`: the translation, the rotation and its centre. */
+    template <int dim>
+    ParsedObstacleMotion<dim>
+    parsed_obstacle_motion(ParameterHandler &prm)
+    {
+      ParsedObstacleMotion<dim> motion;
+      prm.enter_subsection("Obstacle");
+      motion.translation = Parameters::parse_function<dim>(prm, "Obstacle", "Motion");
+      prm.enter_subsection("Motion");
+      const std::vector<double> centre =
+          Utilities::string_to_double(Utilities::split_string_list(prm.get("Rotation centre")));
+      for (unsigned int d = 0; d < dim; ++d)
+        motion.rotation_centre[d] = centre[d];
+      // an angle of 0 (the default) is no rotation: a plane's pairing then
+      // follows the obstacle within the step (Contact::RigidObstacle::is_flat())
+      prm.enter_subsection("Rotation");
+      bool turns = false;
+      for (const auto &component :
+           Utilities::split_string_list(prm.get("Function expression"), ';'))
+        turns |= component != "0";
+      prm.leave_subsection();
+      if (turns)
+        motion.rotation =
+            Parameters::parse_function<dim>(prm, "Obstacle/Motion", "Rotation", dim == 2 ? 1 : 3);
+      prm.leave_subsection();
+      prm.leave_subsection();
+      return motion;
+    }
   } // namespace
 
   template <int dim>
@@ -78,32 +116,12 @@ namespace StabilizedLagrangian
     Utilities::System::get_memory_stats(memory_at_start);
     loops = LoopPolicy(solver_parameters);
 
-    obstacle = Obstacles::create<dim>(prm);
-    prm.enter_subsection("Obstacle");
-    obstacle_translation = Parameters::parse_function<dim>(prm, "Obstacle", "Motion");
-    {
-      prm.enter_subsection("Motion");
-      const std::vector<double> centre =
-          Utilities::string_to_double(Utilities::split_string_list(prm.get("Rotation centre")));
-      Point<dim> rotation_centre;
-      for (unsigned int d = 0; d < dim; ++d)
-        rotation_centre[d] = centre[d];
-      // an angle of 0 (the default) is no rotation: a plane's pairing then
-      // follows the obstacle within the step (Contact::RigidObstacle::is_flat())
-      prm.enter_subsection("Rotation");
-      bool turns = false;
-      for (const auto &component :
-           Utilities::split_string_list(prm.get("Function expression"), ';'))
-        turns |= component != "0";
-      prm.leave_subsection();
-      if (turns)
-        obstacle_rotation =
-            Parameters::parse_function<dim>(prm, "Obstacle/Motion", "Rotation", dim == 2 ? 1 : 3);
-      prm.leave_subsection();
-      obstacle_motion = std::make_shared<const Contact::ObstacleMotion<dim>>(
-          obstacle_translation, obstacle_rotation, rotation_centre);
-    }
-    prm.leave_subsection();
+    obstacle                               = Obstacles::create<dim>(prm);
+    const ParsedObstacleMotion<dim> motion = parsed_obstacle_motion<dim>(prm);
+    obstacle_translation                   = motion.translation;
+    obstacle_rotation                      = motion.rotation;
+    obstacle_motion                        = std::make_shared<const Contact::ObstacleMotion<dim>>(
+        obstacle_translation, obstacle_rotation, motion.rotation_centre);
     materials = Materials::create_all<dim>(prm);
     prm.enter_subsection("Contact");
     friction_law = FrictionLaws::create(prm, "Contact");

@@ -36,6 +36,23 @@ namespace StabilizedLagrangian
         return place;
       }
 
+      /**
+       * @p inverse_diagonal = diag(@p matrix)⁻¹ on the rows @p rows (0 where
+       * the diagonal entry is 0).
+       */
+      void
+      invert_diagonal(const TrilinosWrappers::SparseMatrix &matrix,
+                      const IndexSet                       &rows,
+                      TrilinosWrappers::MPI::Vector        &inverse_diagonal)
+      {
+        for (const auto i : rows)
+          {
+            const double diagonal = matrix.diag_element(i);
+            inverse_diagonal(i)   = diagonal != 0. ? 1. / diagonal : 0.;
+          }
+        inverse_diagonal.compress(VectorOperation::insert);
+      }
+
       /** f(row, column, value) for every stored entry of the rows @p rows (locally owned). */
       template <typename Function>
       void
@@ -165,9 +182,39 @@ namespace StabilizedLagrangian
     void
     BlockIterativeSolver::set_up(const TrilinosWrappers::SparseMatrix &matrix)
     {
+      auto start = std::chrono::steady_clock::now();
+      extract_blocks(matrix);
+      // diag(K)⁻¹, for the multipliers' compliance with K replaced by its diagonal
+      TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
+      invert_diagonal(augmented, owned_u, inverse_diagonal);
+      augment_displacement_block(inverse_diagonal);
+      initialize_amg();
+      times.amg_setup = seconds_since(start);
+      start           = std::chrono::steady_clock::now();
+
+      schur_factorisation.reset();
+      block_rows.clear();
+      block_inverses.clear();
+      if (owned_m.size() == 0)
+        return;
+      invert_diagonal(augmented, owned_u, inverse_diagonal);
+      form_schur_complement(inverse_diagonal);
+      if (invert_local_blocks())
+        {
+          times.schur = seconds_since(start);
+          return;
+        }
+      schur_factorisation = std::make_unique<TrilinosWrappers::SolverDirect>(
+          schur_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+      schur_factorisation->initialize(schur);
+      times.schur = seconds_since(start);
+    }
+
+    void
+    BlockIterativeSolver::extract_blocks(const TrilinosWrappers::SparseMatrix &matrix)
+    {
       // the Newton matrix keeps its pattern for the life of this solver
       // (ContactProblem makes a new one with each new pattern)
-      auto       start       = std::chrono::steady_clock::now();
       const bool new_pattern = !blocks_ready;
       extract_block(matrix, owned_u, owned_m, n_u, true, false, new_pattern, communicator, B);
       extract_block(matrix, owned_m, owned_u, n_u, false, true, new_pattern, communicator, C);
@@ -200,19 +247,12 @@ namespace StabilizedLagrangian
       augmented = 0.;
       extract_block(matrix, owned_u, owned_u, n_u, true, true, false, communicator, augmented);
       blocks_ready = true;
+    }
 
-      // diag(K)⁻¹, for the multipliers' compliance with K replaced by its diagonal
-      TrilinosWrappers::MPI::Vector inverse_diagonal(owned_u, communicator);
-      const auto invert_diagonal = [&](const TrilinosWrappers::SparseMatrix &matrix) {
-        for (const auto i : owned_u)
-          {
-            const double diagonal = matrix.diag_element(i);
-            inverse_diagonal(i)   = diagonal != 0. ? 1. / diagonal : 0.;
-          }
-        inverse_diagonal.compress(VectorOperation::insert);
-      };
-      invert_diagonal(augmented);
-
+    void
+    BlockIterativeSolver::augment_displacement_block(
+        const TrilinosWrappers::MPI::Vector &inverse_diagonal)
+    {
       // Γ = c diag(C diag(K)⁻¹ Cᵀ)⁻¹ on the rows that only constrain the
       // displacement, each on its own: D's row vanishes (augmenting rows with D
       // entries too, Γ D ≠ 0, made GMRES stagnate on the patins) and the row of
@@ -250,7 +290,11 @@ namespace StabilizedLagrangian
           C_transposed.mmult(penalty, C, augmentation);
           augmented.add(1., penalty);
         }
+    }
 
+    void
+    BlockIterativeSolver::initialize_amg()
+    {
       // smoothed aggregation with the given near-null space (translations, or
       // all rigid-body modes), aggregating whole nodes
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
@@ -268,16 +312,13 @@ namespace StabilizedLagrangian
       // (the DoFs of a node are consecutive: aggregate nodes, not single DoFs)
       parameters.set("PDE equations", static_cast<int>(n_components));
       amg.initialize(augmented, parameters);
-      times.amg_setup = seconds_since(start);
-      start           = std::chrono::steady_clock::now();
+    }
 
-      schur_factorisation.reset();
-      block_rows.clear();
-      block_inverses.clear();
-      if (owned_m.size() == 0)
-        return;
+    void
+    BlockIterativeSolver::form_schur_complement(
+        const TrilinosWrappers::MPI::Vector &inverse_diagonal)
+    {
       // Ŝ = D − C diag(K̃)⁻¹ B (Γ D = 0: B + Cᵀ Γ D = B), on the union of the patterns
-      invert_diagonal(augmented);
       TrilinosWrappers::SparseMatrix product;
       C.mmult(product, B, inverse_diagonal);
       TrilinosWrappers::SparsityPattern pattern(owned_m, owned_m, communicator);
@@ -295,15 +336,6 @@ namespace StabilizedLagrangian
         schur.add(row, column, -value);
       });
       schur.compress(VectorOperation::add);
-      if (invert_local_blocks())
-        {
-          times.schur = seconds_since(start);
-          return;
-        }
-      schur_factorisation = std::make_unique<TrilinosWrappers::SolverDirect>(
-          schur_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-      schur_factorisation->initialize(schur);
-      times.schur = seconds_since(start);
     }
 
     bool

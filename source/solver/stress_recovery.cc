@@ -35,6 +35,7 @@ namespace StabilizedLagrangian
       return result;
     }
 
+    /** The monomial with the exponents @p e at the point @p local (face coordinates). */
     template <int dim>
     double
     monomial(const std::array<unsigned int, dim> &e, const Point<dim> &local)
@@ -43,6 +44,105 @@ namespace StabilizedLagrangian
       for (unsigned int d = 0; d < dim; ++d)
         value *= std::pow(local[d], static_cast<int>(e[d]));
       return value;
+    }
+
+    /**
+     * The coordinates of a point in a boundary face's frame: tangents, then
+     * the outward normal, about the face's centre, in face diameters.
+     */
+    template <int dim> class FaceCoordinates
+    {
+    public:
+      template <typename FaceIterator>
+      FaceCoordinates(const FaceIterator &face, const Tensor<1, dim> &normal)
+          : centre(face->center())
+          , h(face->diameter())
+      {
+        const auto tangents = Contact::tangent_basis(normal);
+        std::copy(tangents.begin(), tangents.end(), frame.begin());
+        frame[dim - 1] = normal;
+      }
+
+      /** The coordinates of @p x. */
+      Point<dim>
+      operator()(const Point<dim> &x) const
+      {
+        Point<dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = (x - centre) * frame[d] / h;
+        return y;
+      }
+
+    private:
+      std::array<Tensor<1, dim>, dim> frame;
+      Point<dim>                      centre;
+      double                          h;
+    };
+
+    /**
+     * The exponents of the fit's space for @p n_samples samples: degree p + 1
+     * along the face and p across it for p = @p degree, then smaller ones
+     * while the patch still has no more samples than monomials (p − 1, ...,
+     * 1, then linear, then constant).
+     */
+    template <int dim>
+    std::vector<std::array<unsigned int, dim>>
+    fit_exponents(const unsigned int degree, const std::size_t n_samples)
+    {
+      std::vector<std::array<unsigned int, dim>> exponents = monomials<dim>(degree + 1, degree);
+      for (unsigned int p = degree - 1; p >= 1 && exponents.size() >= n_samples; --p)
+        exponents = monomials<dim>(p + 1, p);
+      if (exponents.size() >= n_samples)
+        exponents = monomials<dim>(1, 1);
+      if (exponents.size() >= n_samples)
+        exponents = monomials<dim>(0, 0);
+      return exponents;
+    }
+
+    /**
+     * The least-squares coefficients (monomial, stress component) of the
+     * polynomial with @p exponents fitted to the stress @p samples, the
+     * points in the coordinates @p local; the normal equations are solved by
+     * the pseudo-inverse, singular values below 1e-12 of its trace left out.
+     */
+    template <int dim>
+    FullMatrix<double>
+    least_squares_fit(const std::vector<std::pair<Point<dim>, Tensor<2, dim>>> &samples,
+                      const std::vector<std::array<unsigned int, dim>>         &exponents,
+                      const FaceCoordinates<dim>                               &local)
+    {
+      const unsigned int       n = exponents.size();
+      LAPACKFullMatrix<double> normal_matrix(n, n);
+      FullMatrix<double>       moments(n, dim * dim);
+      std::vector<double>      basis(n);
+      for (const auto &[x, stress] : samples)
+        {
+          const Point<dim> y = local(x);
+          for (unsigned int i = 0; i < n; ++i)
+            basis[i] = monomial<dim>(exponents[i], y);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              for (unsigned int j = 0; j < n; ++j)
+                normal_matrix(i, j) += basis[i] * basis[j];
+              for (unsigned int c = 0; c < dim * dim; ++c)
+                moments(i, c) += basis[i] * stress[c / dim][c % dim];
+            }
+        }
+      double trace = 0.;
+      for (unsigned int i = 0; i < n; ++i)
+        trace += normal_matrix(i, i);
+      normal_matrix.compute_inverse_svd(1e-12 * trace);
+      FullMatrix<double> coefficients(n, dim * dim);
+      Vector<double>     column(n), solution(n);
+      for (unsigned int c = 0; c < dim * dim; ++c)
+        {
+          for (unsigned int i = 0; i < n; ++i)
+            column[i] = moments(i, c);
+          normal_matrix.vmult(solution, column);
+          for (unsigned int i = 0; i < n; ++i)
+            coefficients(i, c) = solution[i];
+        }
+      return coefficients;
     }
   } // namespace
 
@@ -68,11 +168,8 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  std::vector<Tensor<2, dim>>
-  StressRecovery<dim>::at(const CellIterator            &cell,
-                          const unsigned int             face_no,
-                          const Tensor<1, dim>          &normal,
-                          const std::vector<Point<dim>> &points)
+  std::vector<std::pair<Point<dim>, Tensor<2, dim>>>
+  StressRecovery<dim>::patch_samples(const CellIterator &cell)
   {
     // the patch: every cell sharing a vertex with cell (a hanging vertex
     // brings the coarse cell whose face holds it); one more ring of cells
@@ -104,63 +201,22 @@ namespace StabilizedLagrangian
         add_ring();
         all = gather();
       }
+    return all;
+  }
 
-    // the face's frame: tangents, then the normal; lengths in face diameters
-    std::array<Tensor<1, dim>, dim> frame;
-    const auto                      tangents = Contact::tangent_basis(normal);
-    std::copy(tangents.begin(), tangents.end(), frame.begin());
-    frame[dim - 1]          = normal;
-    const Point<dim> centre = cell->face(face_no)->center();
-    const double     h      = cell->face(face_no)->diameter();
-    const auto       local  = [&](const Point<dim> &x) {
-      Point<dim> y;
-      for (unsigned int d = 0; d < dim; ++d)
-        y[d] = (x - centre) * frame[d] / h;
-      return y;
-    };
-
-    // the fit's space, then smaller ones while the patch still has no more
-    // samples than monomials: degree p + 1 along the face and p across it for
-    // p = degree, ..., 1, then linear, then constant
-    std::vector<std::array<unsigned int, dim>> exponents = monomials<dim>(degree + 1, degree);
-    for (unsigned int p = degree - 1; p >= 1 && exponents.size() >= all.size(); --p)
-      exponents = monomials<dim>(p + 1, p);
-    if (exponents.size() >= all.size())
-      exponents = monomials<dim>(1, 1);
-    if (exponents.size() >= all.size())
-      exponents = monomials<dim>(0, 0);
-    const unsigned int       n = exponents.size();
-    LAPACKFullMatrix<double> normal_matrix(n, n);
-    FullMatrix<double>       moments(n, dim * dim);
-    std::vector<double>      basis(n);
-    for (const auto &[x, stress] : all)
-      {
-        const Point<dim> y = local(x);
-        for (unsigned int i = 0; i < n; ++i)
-          basis[i] = monomial<dim>(exponents[i], y);
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            for (unsigned int j = 0; j < n; ++j)
-              normal_matrix(i, j) += basis[i] * basis[j];
-            for (unsigned int c = 0; c < dim * dim; ++c)
-              moments(i, c) += basis[i] * stress[c / dim][c % dim];
-          }
-      }
-    double trace = 0.;
-    for (unsigned int i = 0; i < n; ++i)
-      trace += normal_matrix(i, i);
-    normal_matrix.compute_inverse_svd(1e-12 * trace);
-    // the least-squares coefficients of each stress component
-    FullMatrix<double> coefficients(n, dim * dim);
-    Vector<double>     column(n), solution(n);
-    for (unsigned int c = 0; c < dim * dim; ++c)
-      {
-        for (unsigned int i = 0; i < n; ++i)
-          column[i] = moments(i, c);
-        normal_matrix.vmult(solution, column);
-        for (unsigned int i = 0; i < n; ++i)
-          coefficients(i, c) = solution[i];
-      }
+  template <int dim>
+  std::vector<Tensor<2, dim>>
+  StressRecovery<dim>::at(const CellIterator            &cell,
+                          const unsigned int             face_no,
+                          const Tensor<1, dim>          &normal,
+                          const std::vector<Point<dim>> &points)
+  {
+    const std::vector<std::pair<Point<dim>, Tensor<2, dim>>> all = patch_samples(cell);
+    const FaceCoordinates<dim>                               local(cell->face(face_no), normal);
+    const std::vector<std::array<unsigned int, dim>>         exponents =
+        fit_exponents<dim>(degree, all.size());
+    const unsigned int       n            = exponents.size();
+    const FullMatrix<double> coefficients = least_squares_fit<dim>(all, exponents, local);
 
     std::vector<Tensor<2, dim>> result(points.size());
     for (unsigned int q = 0; q < points.size(); ++q)

@@ -181,6 +181,26 @@ namespace StabilizedLagrangian
     }
 
   private:
+    /**
+     * The multiplier DoFs with support on face @p face_no of the multiplier
+     * cell @p m_cell: their monolithic and cell-local indices (m_dofs,
+     * m_local) and their coefficients in @p ghosted.
+     */
+    void
+    gather_multipliers(const typename DoFHandler<dim>::active_cell_iterator &m_cell,
+                       const unsigned int                                    face_no,
+                       const TrilinosWrappers::MPI::Vector                  &ghosted);
+    /**
+     * ψ_a of each gathered multiplier at the points, into m_shapes: φ_a, or
+     * with the face's dual basis @p dual (A = D M⁻¹; null: the standard
+     * basis) Σ_r A_pr φ_(r, c).
+     */
+    void
+    evaluate_multiplier_shapes(const FullMatrix<double> *dual);
+    /** The displacement at the points in @p ghosted and at the step's start. */
+    void
+    evaluate_displacements(const TrilinosWrappers::MPI::Vector &ghosted);
+
     const ContactSpaces<dim> &spaces;
     const Quadrature<dim - 1> quadrature;
     const bool                follow_segments;

@@ -119,6 +119,29 @@ namespace StabilizedLagrangian
       set_up(const TrilinosWrappers::SparseMatrix &matrix);
 
       /**
+       * B, C, D and Cᵀ from @p matrix, and K̃'s pattern (K's and Cᵀ C's, made
+       * once per pattern of the Newton matrix) with K's values.
+       */
+      void
+      extract_blocks(const TrilinosWrappers::SparseMatrix &matrix);
+
+      /**
+       * Γ on the multiplier rows that only constrain the displacement, from
+       * C diag(K)⁻¹ Cᵀ with @p inverse_diagonal = diag(K)⁻¹, and K̃ = K + Cᵀ Γ C
+       * (doc/iterative_solver.md).
+       */
+      void
+      augment_displacement_block(const TrilinosWrappers::MPI::Vector &inverse_diagonal);
+
+      /** The smoothed-aggregation AMG of K̃ with the near-null space, aggregating whole nodes. */
+      void
+      initialize_amg();
+
+      /** Ŝ = D − C diag(K̃)⁻¹ B, @p inverse_diagonal = diag(K̃)⁻¹, on the union of the patterns. */
+      void
+      form_schur_complement(const TrilinosWrappers::MPI::Vector &inverse_diagonal);
+
+      /**
        * Where Ŝ falls apart into small blocks that each rank owns whole (a
        * nodal contact quadrature against a rigid partner: each multiplier
        * couples only with its own node), invert them in place: no serial

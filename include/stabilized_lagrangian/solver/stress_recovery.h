@@ -60,8 +60,17 @@ namespace StabilizedLagrangian
        const std::vector<Point<dim>> &points);
 
   private:
+    /** The stress samples of @p cell, computed once and cached. */
     const std::vector<std::pair<Point<dim>, Tensor<2, dim>>> &
     samples(const CellIterator &cell);
+
+    /**
+     * The samples of the patch of @p cell: the cells sharing a vertex with
+     * it, and one more ring where those hold no more samples than the fit of
+     * full degree has monomials.
+     */
+    std::vector<std::pair<Point<dim>, Tensor<2, dim>>>
+    patch_samples(const CellIterator &cell);
 
     const DoFHandler<dim>                                                   &dof_handler;
     const unsigned int                                                       degree;
