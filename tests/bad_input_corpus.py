@@ -307,9 +307,9 @@ SPRING = """subsection Boundary conditions
 end
 """
 text_case("a Robin subsection", scene() + "subsection Boundary conditions\n  subsection Robin 1\n  end\nend\n",
-          "'Spring' (elastic support)")
+          "'Spring <name>'")
 text_case("a Dirichlet subsection without a name",
-          scene() + "subsection Boundary conditions\n  subsection Dirichlet\n  end\nend\n", "'<kind> <name>'")
+          scene() + "subsection Boundary conditions\n  subsection Dirichlet\n  end\nend\n", "'Dirichlet <name>'")
 text_case("springs of zero stiffness", scene() + SPRING.replace("BOUNDARY", "0").replace("STIFFNESS", "0, 0"),
           "Spring side/Stiffness")
 text_case("springs of negative stiffness",
