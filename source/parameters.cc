@@ -203,37 +203,14 @@ namespace StabilizedLagrangian
 
     namespace
     {
-      template <int dim>
-      std::string
-      component_names()
-      {
-        return dim == 2 ? "x|y" : "x|y|z";
-      }
-    } // namespace
-
-    namespace
-    {
-      /** The kinds of `Boundary conditions` subsections: the plug-ins', and those parsed here. */
-      std::vector<std::string>
-      condition_kinds()
-      {
-        std::vector<std::string> kinds = StabilizedLagrangian::BoundaryConditions::kinds();
-        kinds.push_back("Rigid plate");
-        return kinds;
-      }
-
-      /** The kinds of condition_kinds() with their descriptions, for messages. */
+      /** The kinds of `Boundary conditions` subsections with their descriptions, for messages. */
       std::string
       condition_kinds_described()
       {
         std::string result;
-        for (const auto &kind : condition_kinds())
-          result +=
-              (result.empty() ? "'" : ", '") + kind + " <name>' (" +
-              (kind == "Rigid plate"
-                   ? std::string("a plate carrying a force")
-                   : StabilizedLagrangian::BoundaryConditions::Registry<2>::description(kind)) +
-              ")";
+        for (const auto &kind : StabilizedLagrangian::BoundaryConditions::kinds())
+          result += (result.empty() ? "'" : ", '") + kind + " <name>' (" +
+                    StabilizedLagrangian::BoundaryConditions::Registry<2>::description(kind) + ")";
         return result;
       }
     } // namespace
@@ -270,7 +247,7 @@ namespace StabilizedLagrangian
             {
               std::vector<std::string> *list = nullptr;
               std::string               label;
-              for (const auto &kind : condition_kinds())
+              for (const auto &kind : StabilizedLagrangian::BoundaryConditions::kinds())
                 if (name.rfind(kind + " ", 0) == 0)
                   {
                     list  = &sections.conditions[kind];
@@ -336,60 +313,6 @@ namespace StabilizedLagrangian
                               "whose friction law is this zone's `Friction law` instead of "
                               "Contact/Friction law; empty: the zone is unused.");
             FrictionLaws::declare_parameters(prm);
-            prm.leave_subsection();
-          }
-      prm.leave_subsection();
-    }
-
-    namespace
-    {
-      /** The names of the subsections of kind @p kind in @p sections. */
-      std::vector<std::string>
-      names_of(const ConditionSections &sections, const std::string &kind)
-      {
-        const auto names = sections.conditions.find(kind);
-        return names == sections.conditions.end() ? std::vector<std::string>() : names->second;
-      }
-    } // namespace
-
-    template <int dim>
-    void
-    BoundaryConditions<dim>::declare_parameters(ParameterHandler        &prm,
-                                                const ConditionSections &sections)
-    {
-      const auto declared = [&prm](const std::string &section) {
-        return prm.subsection_path_exists({"Boundary conditions", section});
-      };
-      const auto boundary_entry = [&prm](const std::string &what) {
-        StabilizedLagrangian::BoundaryConditions::OnBoundary<dim>::declare_boundary(prm, what);
-      };
-      prm.enter_subsection("Boundary conditions");
-      for (const auto &name : names_of(sections, "Rigid plate"))
-        if (!declared("Rigid plate " + name))
-          {
-            prm.enter_subsection("Rigid plate " + name);
-            boundary_entry("tied to a rigid plate: in the plate's components it moves as one "
-                           "translation, and turns with the plate if Rotation = free");
-            prm.declare_entry("Components",
-                              dim == 2 ? "y" : "z",
-                              Patterns::MultipleSelection(component_names<dim>()),
-                              "The components the plate ties; the others stay free (or take "
-                              "another condition).");
-            prm.declare_entry("Rotation",
-                              "guided",
-                              Patterns::Selection("guided|free"),
-                              "guided: the plate only translates; free: it also turns (a "
-                              "small rotation theta about the reference point, u = U + theta x "
-                              "(X - X_0)), carrying the force at the reference point and no "
-                              "moment; needs every component tied.");
-            prm.declare_entry("Reference point",
-                              "",
-                              Patterns::Anything(),
-                              "X_0 (mm): where the force acts and the plate turns about; "
-                              "empty: the centroid of the boundary's nodes.");
-            prm.enter_subsection("Force");
-            declare_function<dim>(prm, "N, per mm of thickness in 2D; only t is used");
-            prm.leave_subsection();
             prm.leave_subsection();
           }
       prm.leave_subsection();
@@ -501,68 +424,6 @@ namespace StabilizedLagrangian
         }
       prm.leave_subsection();
       return function;
-    }
-
-    template <int dim>
-    void
-    BoundaryConditions<dim>::parse_parameters(ParameterHandler        &prm,
-                                              const ConditionSections &sections)
-    {
-      plates.clear();
-      const auto parse_function = [&prm](const std::string &slot, const std::string &name) {
-        return Parameters::parse_function<dim>(prm, "Boundary conditions/" + slot, name);
-      };
-
-      // the condition's boundary, or nothing where it is unused (-1)
-      const auto boundary = [&prm](const std::string &section)
-          -> std::optional<std::pair<types::boundary_id, std::string>> {
-        const std::string value = Utilities::trim(prm.get("Boundary id"));
-        if (value == "-1")
-          return std::nullopt;
-        const auto id =
-            boundary_id_or_name(value, "Boundary conditions/" + section + "/Boundary id");
-        return std::make_pair(id.value_or(0), id ? "" : value);
-      };
-      const auto vertex = [&prm](const std::string &section,
-                                 const std::string &entry = "Point",
-                                 const std::string &what  = "a vertex of the mesh") {
-        return StabilizedLagrangian::BoundaryConditions::parse_point<dim>(
-            prm, section, entry, what);
-      };
-      prm.enter_subsection("Boundary conditions");
-      for (const auto &name : names_of(sections, "Rigid plate"))
-        {
-          const std::string section = "Rigid plate " + name;
-          prm.enter_subsection(section);
-          if (const auto where = boundary(section))
-            {
-              std::vector<bool> mask(dim, false);
-              for (const auto &c : Utilities::split_string_list(prm.get("Components")))
-                mask[c == "x" ? 0 : (c == "y" ? 1 : 2)] = true;
-              if (std::none_of(mask.begin(), mask.end(), [](const bool b) { return b; }))
-                throw InputError("Boundary conditions/" + section +
-                                 "/Components: empty, so the plate ties nothing; name the "
-                                 "components it carries (x, y" +
-                                 std::string(dim == 3 ? ", z" : "") + ").");
-              const bool free_rotation = prm.get("Rotation") == "free";
-              if (free_rotation && std::count(mask.begin(), mask.end(), true) != dim)
-                throw InputError("Boundary conditions/" + section +
-                                 "/Rotation = free: a plate free to turn ties every component; "
-                                 "set Components = " +
-                                 std::string(dim == 2 ? "x, y" : "x, y, z") + ".");
-              plates.push_back(RigidPlateCondition<dim>{
-                  where->first,
-                  where->second,
-                  ComponentMask(mask),
-                  parse_function(section, "Force"),
-                  free_rotation,
-                  vertex("Boundary conditions/" + section, "Reference point", "a point"),
-                  name,
-                  "Boundary conditions/" + section});
-            }
-          prm.leave_subsection();
-        }
-      prm.leave_subsection();
     }
 
     void
@@ -1023,7 +884,7 @@ namespace StabilizedLagrangian
       template_sections()
       {
         ConditionSections sections;
-        for (const auto &kind : condition_kinds())
+        for (const auto &kind : StabilizedLagrangian::BoundaryConditions::kinds())
           sections.conditions[kind] = {"1"};
         sections.zones = {"1"};
         return sections;
@@ -1109,7 +970,6 @@ namespace StabilizedLagrangian
                                   Discretization::Registry<dim>::pattern(),
                                   Discretization::Registry<dim>::documentation(
                                       "Displacement / multiplier spaces (λ_n and Λ together):"));
-      BoundaryConditions<dim>::declare_parameters(prm, template_sections());
       StabilizedLagrangian::BoundaryConditions::declare_parameters<dim>(prm, template_sections());
       declare_contact_zones(prm, template_sections().zones);
       LoadStepping::declare_parameters(prm);
@@ -1286,7 +1146,6 @@ namespace StabilizedLagrangian
         parameter_file_directory = ".";
       const ExpandedFile      content  = is_file ? read_file(text) : ExpandedFile{text, {}};
       const ConditionSections sections = condition_sections(content.text);
-      BoundaryConditions<dim>::declare_parameters(prm, sections);
       StabilizedLagrangian::BoundaryConditions::declare_parameters<dim>(prm, sections);
       declare_contact_zones(prm, sections.zones);
       try
@@ -1337,8 +1196,6 @@ namespace StabilizedLagrangian
     declare_function<3>(ParameterHandler &, const std::string &, unsigned int);
     template class BoundaryFunction<2>;
     template class BoundaryFunction<3>;
-    template struct BoundaryConditions<2>;
-    template struct BoundaryConditions<3>;
     template ConditionSections
     parse<2>(ParameterHandler &, const std::string &, const bool);
     template ConditionSections

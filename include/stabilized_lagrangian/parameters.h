@@ -154,24 +154,6 @@ namespace StabilizedLagrangian
                      unsigned int       n_components = dim);
 
     /**
-     * @brief A rigid plate tied to a boundary: the boundary's displacement in
-     * the plate's components is one translation U (a guided plate), or
-     * U + θ × (X − X_0) (a plate free to turn, every component tied), and the
-     * plate carries a resultant force F(t) at X_0.
-     */
-    template <int dim> struct RigidPlateCondition
-    {
-      types::boundary_id boundary_id;
-      std::string   boundary_name; ///< a mesh's boundary name, resolved to boundary_id by the run
-      ComponentMask components;    ///< the components tied to U
-      std::shared_ptr<BoundaryFunction<dim>> force;         ///< F(t), N (N/mm of thickness in 2D)
-      bool                                   free_rotation; ///< `Rotation = free`
-      std::optional<Point<dim>> reference_point;            ///< X_0; none: the boundary's centroid
-      std::string               name;    ///< the subsection's name, for the columns
-      std::string               section; ///< "Boundary conditions/Rigid plate <name>"
-    };
-
-    /**
      * @brief The condition subsections of `Boundary conditions` a parameter
      * text holds: `Dirichlet <name>`, `Neumann <name>`, `Spring <name>`,
      * `Rigid plate <name>`, any number of each (the names are the words after
@@ -199,25 +181,6 @@ namespace StabilizedLagrangian
      */
     ConditionSections
     condition_sections(const std::string &text);
-
-    /**
-     * @brief The `Boundary conditions/Rigid plate <name>` subsections, any
-     * number (the other kinds are plug-ins: boundary_conditions/interface.h).
-     */
-    template <int dim> struct BoundaryConditions
-    {
-      std::vector<RigidPlateCondition<dim>> plates;
-
-      /**
-       * Declare the subsections @p sections names (those already declared
-       * are left as they are).
-       */
-      static void
-      declare_parameters(ParameterHandler &prm, const ConditionSections &sections);
-      /** Parse the subsections @p sections names (those parse() returned). */
-      void
-      parse_parameters(ParameterHandler &prm, const ConditionSections &sections);
-    };
 
     /** @brief `Load stepping` subsection. */
     struct LoadStepping

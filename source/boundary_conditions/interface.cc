@@ -56,8 +56,35 @@ namespace StabilizedLagrangian
 
     template <int dim>
     void
+    Interface<dim>::find_linked_dofs(const Problem<dim> &,
+                                     const std::vector<std::unique_ptr<Interface<dim>>> &,
+                                     IndexSet &)
+    {
+    }
+
+    template <int dim>
+    void
     Interface<dim>::add_homogeneous_constraints(const Problem<dim> &,
                                                 AffineConstraints<double> &) const
+    {
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::add_linked_constraints(const Problem<dim> &, AffineConstraints<double> &) const
+    {
+    }
+
+    template <int dim>
+    std::optional<IndexSet>
+    Interface<dim>::linked_boundary_dofs(const Problem<dim> &, const unsigned int) const
+    {
+      return std::nullopt;
+    }
+
+    template <int dim>
+    void
+    Interface<dim>::check_prescribed_vertex(const Problem<dim> &, const Interface<dim> &) const
     {
     }
 
@@ -219,14 +246,15 @@ namespace StabilizedLagrangian
     bool
     OnBoundary<dim>::acts_on_faces_of(const types::boundary_id id) const
     {
-      return role != Role::support && id == boundary_id;
+      return (role == Role::load || role == Role::elastic_support) && id == boundary_id;
     }
 
     template <int dim>
     void
     OnBoundary<dim>::add_supported_boundaries(std::vector<types::boundary_id> &ids) const
     {
-      if (role != Role::load && std::find(ids.begin(), ids.end(), boundary_id) == ids.end())
+      if ((role == Role::support || role == Role::elastic_support) &&
+          std::find(ids.begin(), ids.end(), boundary_id) == ids.end())
         ids.push_back(boundary_id);
     }
 

@@ -22,6 +22,17 @@ namespace StabilizedLagrangian
         return point.has_value();
       }
 
+      /**
+       * @brief It acts at one vertex: after the conditions on boundaries, so
+       * its force is added after their global terms (a rigid plate's on its
+       * reference DoFs).
+       */
+      bool
+      at_one_vertex() const override
+      {
+        return true;
+      }
+
       static void
       declare_parameters(ParameterHandler &prm)
       {
@@ -50,9 +61,7 @@ namespace StabilizedLagrangian
         // the force at its vertex's DoFs, through the constraints (a
         // prescribed component takes the load into its reaction, a plate's
         // tied one passes it to the plate)
-        Vector<double> value(dim);
-        force->set_time(problem.time);
-        force->vector_value(Point<dim>(), value);
+        const Vector<double> value = value_at_time(*force, problem.time);
         force->check_finite(problem.communicator);
         if (!problem.locally_owned.is_element(dofs[0]))
           return;

@@ -1,6 +1,7 @@
 #include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
@@ -92,30 +93,16 @@ namespace StabilizedLagrangian
                [p, d](std::ostream &out, const StepRow &row) {
                  out << std::setprecision(10) << row.record.point_reactions[p][d];
                }});
-      for (unsigned int p = 0; p < supports.plates.size(); ++p)
-        for (unsigned int d = 0; d < dim; ++d)
+      const auto &own = supports.condition_columns;
+      for (unsigned int group = 0, n_groups = 1; group < n_groups; ++group)
+        for (unsigned int k = 0; k < own.size(); ++k)
           {
-            const std::string axis(1, "xyz"[d]);
-            columns.push_back({"plate_" + supports.plates[p] + "_displacement_" + axis + "_mm",
-                               [p, d](std::ostream &out, const StepRow &row) {
-                                 out << std::setprecision(10)
-                                     << row.record.plate_displacements[p][d];
-                               }});
-            columns.push_back({"plate_" + supports.plates[p] + "_force_" + axis + "_" + N,
-                               [p, d](std::ostream &out, const StepRow &row) {
-                                 out << std::setprecision(10) << row.record.plate_forces[p][d];
-                               }});
+            n_groups = std::max(n_groups, own[k].group + 1);
+            if (own[k].group == group)
+              columns.push_back({own[k].name, [k](std::ostream &out, const StepRow &row) {
+                                   out << std::setprecision(10) << row.record.condition_values[k];
+                                 }});
           }
-      for (unsigned int p = 0; p < supports.plates.size(); ++p)
-        for (unsigned int a = 0; a < supports.plate_rotations[p]; ++a)
-          columns.push_back(
-              {"plate_" + supports.plates[p] + "_rotation_" +
-                   (supports.plate_rotations[p] == 1 ? std::string()
-                                                     : std::string(1, "xyz"[a]) + "_") +
-                   "rad",
-               [p, a](std::ostream &out, const StepRow &row) {
-                 out << std::setprecision(10) << row.record.plate_rotations[p][a];
-               }});
       for (unsigned int z = 0; z < supports.zones.size(); ++z)
         for (const unsigned int k : {0u, 1u})
           columns.push_back(

@@ -65,7 +65,9 @@ namespace StabilizedLagrangian
     if (obstacle_rotation)
       obstacle_rotation->check_finite(mpi_communicator);
     assemble_contact(assemble_matrix);
-    add_plate_forces();
+    // the boundary conditions' forces on DoFs (not on faces)
+    for (const auto &condition : boundary_conditions)
+      condition->assemble_global(boundary_view(), newton_constraints, system_rhs, external_force);
     if (assemble_matrix)
       system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
@@ -317,40 +319,6 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  void
-  ContactProblem<dim>::add_plate_forces()
-  {
-    // F acts on the plate at X_0: its virtual work F·δU = g·δq with g the
-    // force's components on the translation parameters (0 on the rotation's:
-    // no moment), i.e. A_R⁻ᵀ g on the reference DoFs, into whose rows the
-    // constraints sum the tied DoFs' equations
-    Vector<double> force(dim);
-    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
-      {
-        auto              &plate  = dirichlet_and_plates.plates[p];
-        const PlateMotion &motion = plate_motions[p];
-        plate.force->set_time(time);
-        plate.force->vector_value(Point<dim>(), force);
-        plate.force->check_finite(mpi_communicator);
-        Vector<double> g(motion.modes.size()), on_reference(motion.modes.size());
-        for (unsigned int k = 0; k < motion.modes.size(); ++k)
-          if (motion.modes[k] < dim)
-            g[k] = force(motion.modes[k]);
-        motion.inverse.Tvmult(on_reference, g);
-        for (unsigned int k = 0; k < motion.modes.size(); ++k)
-          if (locally_owned.is_element(motion.dofs[k]))
-            {
-              system_rhs(motion.dofs[k]) -= on_reference[k];
-              external_force(motion.dofs[k]) += on_reference[k];
-            }
-      }
-    // the point loads at their vertices' DoFs
-    const BoundaryConditions::Problem<dim> problem = boundary_view();
-    for (const auto &condition : boundary_conditions)
-      condition->assemble_global(problem, newton_constraints, system_rhs, external_force);
-  }
-
-  template <int dim>
   BoundaryConditions::Problem<dim>
   ContactProblem<dim>::boundary_view() const
   {
@@ -481,7 +449,6 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::compute_volume_fields(const TrilinosWrappers::MPI::Vector &) \
       const;                                                                                      \
   template void ContactProblem<dim>::assemble_contact(bool);                                      \
-  template void ContactProblem<dim>::add_plate_forces();                                          \
   template void ContactProblem<dim>::add_boundary_loads(                                          \
       const typename DoFHandler<dim>::active_cell_iterator &,                                     \
       const std::vector<types::global_dof_index> &,                                               \

@@ -89,7 +89,6 @@ namespace StabilizedLagrangian
       , geometry(Geometry::create<dim>(prm))
       , axisymmetric(parsed_axisymmetric<dim>(prm))
       , contact_parameters(parsed<Parameters::Contact>(prm))
-      , dirichlet_and_plates(parsed<Parameters::BoundaryConditions<dim>>(prm, sections))
       , boundary_conditions(BoundaryConditions::create<dim>(prm, sections))
       , load_stepping(parsed<Parameters::LoadStepping>(prm))
       , solver_parameters(parsed<Parameters::NonlinearSolver>(prm))
@@ -418,8 +417,6 @@ namespace StabilizedLagrangian
     for (const auto &condition : boundary_conditions)
       for (const auto id : condition->boundaries())
         require_boundary(id, condition->section() + "/Boundary id");
-    for (const auto &bc : dirichlet_and_plates.plates)
-      require_boundary(bc.boundary_id, bc.section + "/Boundary id");
   }
 
   template <int dim>
@@ -464,14 +461,8 @@ namespace StabilizedLagrangian
       chosen.contact_boundaries.insert(resolve(name, "Contact/Contact boundary ids"));
     for (const auto &name : contact_parameters.master_names)
       chosen.master_boundaries.insert(resolve(name, "Contact/Master boundary ids"));
-    const auto resolve_condition = [&](auto &bc) {
-      if (!bc.boundary_name.empty())
-        bc.boundary_id = resolve(bc.boundary_name, bc.section + "/Boundary id");
-    };
     for (const auto &condition : boundary_conditions)
       condition->resolve_boundaries(resolve);
-    std::for_each(
-        dirichlet_and_plates.plates.begin(), dirichlet_and_plates.plates.end(), resolve_condition);
 
     for (const auto id : chosen.contact_boundaries)
       require_boundary(id, "Contact/Contact boundary ids");

@@ -112,11 +112,9 @@ namespace StabilizedLagrangian
       }
     partner_dof_growths = 0;
     locally_relevant.add_indices(partner->dofs());
-    // every rank couples to the rigid plates' reference DoFs
-    find_plate_dofs();
-    for (const auto &motion : plate_motions)
-      for (const auto dof : motion.dofs)
-        locally_relevant.add_index(dof);
+    // every rank couples to the DoFs the conditions' constraints link others to
+    for (const auto &condition : boundary_conditions)
+      condition->find_linked_dofs(boundary_view(), boundary_conditions, locally_relevant);
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
@@ -167,7 +165,8 @@ namespace StabilizedLagrangian
     newton_constraints.reinit(locally_relevant);
     newton_constraints.merge(hanging_constraints);
     add_homogeneous_dirichlet_constraints(newton_constraints);
-    add_plate_constraints(newton_constraints);
+    for (const auto &condition : boundary_conditions)
+      condition->add_linked_constraints(boundary_view(), newton_constraints);
     add_prescribed_slip_constraints(newton_constraints);
     newton_constraints.make_consistent_in_parallel(
         locally_owned, locally_relevant, mpi_communicator);
@@ -383,205 +382,6 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  Vector<double>
-  ContactProblem<dim>::PlateMotion::row(const Point<dim> &X, const unsigned int c) const
-  {
-    const Tensor<1, dim> r = (X - point) / size;
-    Vector<double>       a(modes.size());
-    for (unsigned int k = 0; k < modes.size(); ++k)
-      if (modes[k] < dim)
-        a[k] = modes[k] == c ? 1. : 0.;
-      else if constexpr (dim == 2)
-        a[k] = c == 0 ? -r[1] : r[0]; // θ e_z × r
-      else
-        {
-          // (e_axis × r)_c
-          Tensor<1, 3> axis, rr;
-          axis[modes[k] - dim] = 1.;
-          for (unsigned int d = 0; d < 3; ++d)
-            rr[d] = r[d];
-          a[k] = cross_product_3d(axis, rr)[c];
-        }
-    return a;
-  }
-
-  template <int dim>
-  Vector<double>
-  ContactProblem<dim>::PlateMotion::coefficients(const Point<dim> &X, const unsigned int c) const
-  {
-    Vector<double> C(modes.size());
-    inverse.Tvmult(C, row(X, c));
-    return C;
-  }
-
-  template <int dim>
-  template <typename Function>
-  void
-  ContactProblem<dim>::for_each_plate_dof(const unsigned int p,
-                                          const bool         with_ghosts,
-                                          const Function    &f) const
-  {
-    const auto                          &plate = dirichlet_and_plates.plates[p];
-    std::vector<types::global_dof_index> dofs(fe_u->n_dofs_per_cell());
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
-      if (cell->is_locally_owned() || (with_ghosts && cell->is_ghost()))
-        for (const unsigned int face : cell->face_indices())
-          if (cell->face(face)->at_boundary() &&
-              cell->face(face)->boundary_id() == plate.boundary_id)
-            {
-              cell->get_dof_indices(dofs);
-              const auto &mapping =
-                  cell->reference_cell().template get_default_linear_mapping<dim>();
-              for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (fe_u->has_support_on_face(i, face))
-                  {
-                    const unsigned int c = fe_u->system_to_component_index(i).first;
-                    if (plate.components[c])
-                      f(dofs[i],
-                        c,
-                        mapping.transform_unit_to_real_cell(cell, fe_u->unit_support_point(i)));
-                  }
-            }
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::find_plate_dofs()
-  {
-    plate_motions.clear();
-    if (dirichlet_and_plates.plates.empty())
-      return;
-    const IndexSet hanging     = DoFTools::extract_hanging_node_dofs(dof_handler_u);
-    const auto     on_boundary = [&](const types::boundary_id id, const unsigned int c) {
-      return BoundaryConditions::boundary_component_dofs(dof_handler_u, id, c);
-    };
-    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
-      {
-        const auto &plate = dirichlet_and_plates.plates[p];
-        if (plate.free_rotation && axisymmetric)
-          throw InputError(plate.section +
-                           "/Rotation = free: an axisymmetric model has no rotation to free; "
-                           "use guided.");
-        for (unsigned int c = 0; c < dim; ++c)
-          if (plate.components[c])
-            {
-              const IndexSet tied = on_boundary(plate.boundary_id, c);
-              for (const auto &condition : boundary_conditions)
-                if (const auto held = condition->prescribed_boundary_dofs(boundary_view(), c))
-                  {
-                    const bool shared = !(tied & *held & locally_owned_u).is_empty();
-                    if (Utilities::MPI::logical_or(shared, mpi_communicator))
-                      throw InputError(plate.section + ": its boundary shares nodes with " +
-                                       condition->section() + " in component " + "xyz"[c] +
-                                       ", which would hold the plate; leave that component "
-                                       "out of one of them.");
-                  }
-              // a node tied to two plates would make them one (each plate's
-              // motion is its reference DoFs, which that node cannot follow twice)
-              for (unsigned int q = 0; q < p; ++q)
-                {
-                  const auto &other = dirichlet_and_plates.plates[q];
-                  const bool  shared =
-                      other.components[c] &&
-                      !(tied & on_boundary(other.boundary_id, c) & locally_owned_u).is_empty();
-                  if (Utilities::MPI::logical_or(shared, mpi_communicator))
-                    throw InputError(plate.section + ": its boundary shares nodes with " +
-                                     other.section + " in component " + "xyz"[c] +
-                                     " (a node of both, such as a shared corner, cannot follow "
-                                     "two plates); leave that component out of one of them, or "
-                                     "make the two boundaries one plate.");
-                }
-            }
-        // the candidates: the owned DoFs of the tied components that do not hang
-        std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>> candidates;
-        for_each_plate_dof(p, false, [&](const auto dof, const unsigned int c, const auto &X) {
-          if (locally_owned_u.is_element(dof) && !hanging.is_element(dof))
-            candidates.emplace(dof, std::make_pair(c, X));
-        });
-        if (Utilities::MPI::sum(candidates.size(), mpi_communicator) == 0)
-          throw InputError(plate.section + "/Boundary id: the boundary has no node to tie.");
-
-        PlateMotion motion;
-        for (unsigned int c = 0; c < dim; ++c)
-          if (plate.components[c])
-            motion.modes.push_back(c);
-        if (plate.free_rotation)
-          for (unsigned int axis = 0; axis < (dim == 2 ? 1u : 3u); ++axis)
-            motion.modes.push_back(dim + axis);
-        // X_0: given, or the centroid of the boundary's nodes; the size: the
-        // largest distance of a node from it
-        double     count = 0.;
-        Point<dim> sum;
-        for (const auto &[dof, where] : candidates)
-          if (where.first == motion.modes[0])
-            {
-              sum += where.second;
-              count += 1.;
-            }
-        count = Utilities::MPI::sum(count, mpi_communicator);
-        const Tensor<1, dim> centroid =
-            Utilities::MPI::sum(static_cast<const Tensor<1, dim> &>(sum), mpi_communicator) / count;
-        motion.point = plate.reference_point ? *plate.reference_point : Point<dim>(centroid);
-        double size  = 0.;
-        for (const auto &[dof, where] : candidates)
-          size = std::max(size, where.second.distance(motion.point));
-        motion.size = std::max(Utilities::MPI::max(size, mpi_communicator), 1e-300);
-
-        // the reference DoFs, by a pivoted Gram–Schmidt over the candidates'
-        // rows: each takes the largest part of its row the chosen ones do not
-        // span (ties to the smallest index, so the choice does not depend on
-        // the partition)
-        const unsigned int          m = motion.modes.size();
-        std::vector<Vector<double>> basis;
-        FullMatrix<double>          A(m, m);
-        for (unsigned int k = 0; k < m; ++k)
-          {
-            std::vector<double> best = {-1., 0.};
-            for (const auto &[dof, where] : candidates)
-              {
-                Vector<double> a = motion.row(where.second, where.first);
-                for (const auto &q : basis)
-                  a.add(-(a * q), q);
-                if (a.l2_norm() > best[0] * (1. + 1e-12))
-                  best = {a.l2_norm(), static_cast<double>(dof)};
-              }
-            double                  chosen_norm = 0.;
-            types::global_dof_index chosen      = numbers::invalid_dof_index;
-            for (const auto &other : Utilities::MPI::all_gather(mpi_communicator, best))
-              if (other[0] > chosen_norm * (1. + 1e-12) ||
-                  (other[0] >= chosen_norm * (1. - 1e-12) && other[0] > 0. &&
-                   static_cast<types::global_dof_index>(other[1]) < chosen))
-                {
-                  chosen_norm = other[0];
-                  chosen      = static_cast<types::global_dof_index>(other[1]);
-                }
-            if (chosen_norm < 1e-6)
-              throw InputError(plate.section +
-                               "/Rotation = free: the boundary's nodes do not fix the plate's "
-                               "rotation (they lie on one line); tie a boundary that spans "
-                               "the plate, or use guided.");
-            // every rank: the chosen DoF's row, from its owner
-            Vector<double> a(m);
-            if (candidates.count(chosen) > 0)
-              a = motion.row(candidates.at(chosen).second, candidates.at(chosen).first);
-            Utilities::MPI::sum(ArrayView<const double>(a.begin(), m),
-                                mpi_communicator,
-                                ArrayView<double>(a.begin(), m));
-            for (unsigned int j = 0; j < m; ++j)
-              A(k, j) = a[j];
-            motion.dofs.push_back(chosen);
-            for (const auto &q : basis)
-              a.add(-(a * q), q);
-            a /= a.l2_norm();
-            basis.push_back(a);
-          }
-        motion.inverse.reinit(m, m);
-        motion.inverse.invert(A);
-        plate_motions.push_back(motion);
-      }
-  }
-
-  template <int dim>
   void
   ContactProblem<dim>::find_point_dofs()
   {
@@ -590,23 +390,10 @@ namespace StabilizedLagrangian
                            [this](const Point<dim> &point, const std::string &section) {
                              return vertex_dofs(point, section);
                            });
-    // a node held by a point condition and tied to a plate would hold the
-    // plate by that node alone: the plate's load would go partly into the
-    // point's reaction
+    // a vertex a point condition prescribes must not be one another links
     for (const auto &condition : boundary_conditions)
-      for (const auto &plate : dirichlet_and_plates.plates)
-        for (unsigned int c = 0; c < dim; ++c)
-          if (const auto dof = condition->prescribed_point_dof(c); dof && plate.components[c])
-            {
-              const bool shared =
-                  BoundaryConditions::boundary_component_dofs(dof_handler_u, plate.boundary_id, c)
-                      .is_element(*dof);
-              if (Utilities::MPI::logical_or(shared, mpi_communicator))
-                throw InputError(condition->section() + ": its point is a node of " +
-                                 plate.section + " in component " + "xyz"[c] +
-                                 ", which would hold the plate by that node and take part of "
-                                 "its load; leave that component out of one of them.");
-            }
+      for (const auto &other : boundary_conditions)
+        other->check_prescribed_vertex(boundary_view(), *condition);
   }
 
   template <int dim>
@@ -653,27 +440,6 @@ namespace StabilizedLagrangian
                        "/Point: the vertex there hangs on a refined neighbour; put the condition "
                        "on a vertex of the coarser cells.");
     return dofs;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &constraints) const
-  {
-    for (unsigned int p = 0; p < plate_motions.size(); ++p)
-      {
-        const PlateMotion &motion = plate_motions[p];
-        // hanging nodes follow their parents, which are tied
-        for_each_plate_dof(p, true, [&](const auto dof, const unsigned int c, const auto &X) {
-          if (constraints.is_constrained(dof) || !constraints.can_store_line(dof) ||
-              std::find(motion.dofs.begin(), motion.dofs.end(), dof) != motion.dofs.end())
-            return;
-          const Vector<double> C = motion.coefficients(X, c);
-          constraints.add_line(dof);
-          for (unsigned int k = 0; k < C.size(); ++k)
-            if (std::abs(C[k]) > 1e-14)
-              constraints.add_entry(dof, motion.dofs[k], C[k]);
-        });
-      }
   }
 
   template <int dim>
@@ -910,12 +676,9 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
       AffineConstraints<double> &) const;                                                         \
   template void ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &) const;     \
-  template void ContactProblem<dim>::find_plate_dofs();                                           \
-  template struct ContactProblem<dim>::PlateMotion;                                               \
-  template void                                     ContactProblem<dim>::find_point_dofs();       \
+  template void ContactProblem<dim>::find_point_dofs();                                           \
   template std::array<types::global_dof_index, dim> ContactProblem<dim>::vertex_dofs(             \
       const Point<dim> &, const std::string &) const;                                             \
-  template void ContactProblem<dim>::add_plate_constraints(AffineConstraints<double> &) const;    \
   template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
       const;                                                                                      \
   template void ContactProblem<dim>::setup_multiplier_numbering();                                \

@@ -353,11 +353,6 @@ namespace StabilizedLagrangian
     std::vector<bool> free(dim, true);
     for (const auto &condition : boundary_conditions)
       condition->hold_components(id, free);
-    // a rigid plate's tied components take the plate's distributed reaction
-    for (const auto &bc : dirichlet_and_plates.plates)
-      if (bc.boundary_id == id)
-        for (unsigned int d = 0; d < dim; ++d)
-          free[d] = free[d] && !bc.components[d];
     if (std::none_of(free.begin(), free.end(), [](const bool b) { return b; }))
       return;
     face_values.reinit(cell, f);

@@ -65,17 +65,12 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::statistics_supports() const
   {
     StatisticsWriter::Supports supports;
+    supports.force_unit          = force_unit(true);
     supports.reaction_boundaries = supported_boundaries();
     for (const auto &condition : boundary_conditions)
       condition->add_statistics_columns(supports);
-    for (const auto &plate : dirichlet_and_plates.plates)
-      {
-        supports.plates.push_back(plate.name);
-        supports.plate_rotations.push_back(plate.free_rotation ? (dim == 2 ? 1 : 3) : 0);
-      }
     for (const auto &zone : contact_zones)
       supports.zones.push_back(zone.name);
-    supports.force_unit = force_unit(true);
     return supports;
   }
 
@@ -83,33 +78,6 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::compute_reactions(StepStatistics &stats) const
   {
-    stats.plate_displacements.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
-    stats.plate_rotations.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
-    stats.plate_forces.assign(dirichlet_and_plates.plates.size(), {{0., 0., 0.}});
-    Vector<double> force(dim);
-    for (unsigned int p = 0; p < dirichlet_and_plates.plates.size(); ++p)
-      {
-        const PlateMotion &motion = plate_motions[p];
-        dirichlet_and_plates.plates[p].force->set_time(time);
-        dirichlet_and_plates.plates[p].force->vector_value(Point<dim>(), force);
-        // the parameters q = A_R⁻¹ u_R: U, and θ scaled by the plate's size
-        Vector<double> reference(motion.modes.size()), q(motion.modes.size());
-        for (unsigned int k = 0; k < motion.modes.size(); ++k)
-          if (locally_owned.is_element(motion.dofs[k]))
-            reference[k] = solution(motion.dofs[k]);
-        Utilities::MPI::sum(ArrayView<const double>(reference.begin(), reference.size()),
-                            mpi_communicator,
-                            ArrayView<double>(reference.begin(), reference.size()));
-        motion.inverse.vmult(q, reference);
-        for (unsigned int k = 0; k < motion.modes.size(); ++k)
-          if (motion.modes[k] < dim)
-            {
-              stats.plate_displacements[p][motion.modes[k]] = q[k];
-              stats.plate_forces[p][motion.modes[k]]        = force(motion.modes[k]);
-            }
-          else
-            stats.plate_rotations[p][motion.modes[k] - dim] = q[k] / motion.size;
-      }
     const std::vector<types::boundary_id> ids = supported_boundaries();
     std::vector<Tensor<1, dim>>           reactions(ids.size());
     IndexSet                              claimed(dof_handler_u.n_dofs());
@@ -136,6 +104,7 @@ namespace StabilizedLagrangian
           stats.reactions[b][d] = total[d];
       }
     stats.point_reactions.clear();
+    stats.condition_values.clear();
     for (const auto &condition : boundary_conditions)
       condition->add_statistics(boundary_view(), inputs, stats);
   }

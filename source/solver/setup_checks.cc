@@ -175,8 +175,8 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::close_nearest_points()
   {
     // Nothing touches and a rigid motion is free (the Dirichlet conditions
-    // leave it, or the Newton system proved singular: a body held by a
-    // force-controlled plate): the loads alone cannot bring the body onto its
+    // leave it, or the Newton system proved singular: a body carried only by
+    // prescribed forces): the loads alone cannot bring the body onto its
     // partner in a quasi-static step. It is put on the partner by its points
     // nearest to it, as a body lowered until it touches; those points count
     // as touching (approach_gap) until the step converges.

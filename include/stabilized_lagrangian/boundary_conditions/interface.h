@@ -194,10 +194,45 @@ namespace StabilizedLagrangian
       virtual void
       find_dofs(const Problem<dim> &problem, const VertexDoFs<dim> &vertex_dofs);
 
+      /**
+       * @brief Collective, on a new mesh before the constraints are built:
+       * find the DoFs its constraints link others to (add_linked_constraints()),
+       * add them to @p relevant (every rank couples to them), and refuse DoFs
+       * that the @p conditions (the problem's list, this one among them)
+       * prescribe or link already.
+       */
+      virtual void
+      find_linked_dofs(const Problem<dim>                                 &problem,
+                       const std::vector<std::unique_ptr<Interface<dim>>> &conditions,
+                       IndexSet                                           &relevant);
+
       /** @brief Add its homogeneous constraints (the Newton correction's) to @p constraints. */
       virtual void
       add_homogeneous_constraints(const Problem<dim>        &problem,
                                   AffineConstraints<double> &constraints) const;
+
+      /**
+       * @brief Add its constraints that link DoFs to others, u_i = Σ_k C_ik
+       * u_{r_k}, to @p constraints, after every condition's homogeneous ones
+       * (a DoF constrained already keeps its constraint).
+       */
+      virtual void
+      add_linked_constraints(const Problem<dim>        &problem,
+                             AffineConstraints<double> &constraints) const;
+
+      /**
+       * @brief The DoFs of component @p c of its boundary that its constraints
+       * link to others (add_linked_constraints()); none if it links none.
+       */
+      virtual std::optional<IndexSet>
+      linked_boundary_dofs(const Problem<dim> &problem, unsigned int c) const;
+
+      /**
+       * @brief Collective: throw InputError if it links a component of the
+       * vertex @p other prescribes (prescribed_point_dof()).
+       */
+      virtual void
+      check_prescribed_vertex(const Problem<dim> &problem, const Interface<dim> &other) const;
 
       /**
        * @brief Collective: add the displacements it prescribes at time @p t to
@@ -221,7 +256,7 @@ namespace StabilizedLagrangian
 
       /**
        * @brief The DoFs of component @p c of its boundary that it prescribes;
-       * none if it prescribes no boundary's (the rigid plates' checks).
+       * none if it prescribes no boundary's (the linked DoFs' checks).
        */
       virtual std::optional<IndexSet>
       prescribed_boundary_dofs(const Problem<dim> &problem, unsigned int c) const;
@@ -317,13 +352,15 @@ namespace StabilizedLagrangian
       /**
        * @brief What a condition on a boundary does there: a load has face
        * terms (acts_on_faces_of()), a support takes the boundary's reaction
-       * (add_supported_boundaries()), an elastic support both.
+       * (add_supported_boundaries()), an elastic support both; a linked
+       * boundary neither (it acts through its constraints, add_linked_constraints()).
        */
       enum class Role
       {
         load,
         support,
-        elastic_support
+        elastic_support,
+        linked
       };
 
       /** Reads `Boundary id` of the current subsection. */
@@ -370,6 +407,20 @@ namespace StabilizedLagrangian
                 const std::string      &section,
                 const std::string      &entry = "Point",
                 const std::string      &what  = "a vertex of the mesh");
+
+    /**
+     * @brief The value at time @p t of @p function, a function of t only (a
+     * resultant force), taken at the origin.
+     */
+    template <int dim>
+    Vector<double>
+    value_at_time(Parameters::BoundaryFunction<dim> &function, const double t)
+    {
+      Vector<double> value(dim);
+      function.set_time(t);
+      function.vector_value(Point<dim>(), value);
+      return value;
+    }
 
     /** @brief The registry of the boundary condition kinds, by the word(s) before the name. */
     template <int dim> using Registry = PluginRegistry<Interface<dim>>;

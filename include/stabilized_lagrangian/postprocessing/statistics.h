@@ -60,12 +60,11 @@ namespace StabilizedLagrangian
     std::vector<std::array<double, 3>> reactions;
     /** the force each point Dirichlet condition exerts on the body (N; N/mm in 2D) */
     std::vector<std::array<double, 3>> point_reactions;
-    /** each rigid plate's translation U (mm), in the order of StatisticsWriter's plates */
-    std::vector<std::array<double, 3>> plate_displacements;
-    /** each rigid plate's rotation θ (rad; 2D: about z, in component 0), 0 for a guided one */
-    std::vector<std::array<double, 3>> plate_rotations;
-    /** the force F(t) on each rigid plate (N; N/mm in 2D) */
-    std::vector<std::array<double, 3>> plate_forces;
+    /**
+     * the boundary conditions' own columns' values, in the order
+     * StatisticsWriter::Supports::condition_columns lists them
+     */
+    std::vector<double> condition_values;
     /** each contact zone's normal and tangential force (N; N/mm in 2D), as the totals' */
     std::vector<std::array<double, 2>> zone_forces;
     /** fixed-point loops that cycled or did not converge and were folded into Newton */
@@ -151,13 +150,22 @@ namespace StabilizedLagrangian
       std::vector<dealii::types::boundary_id> reaction_boundaries;
       /** the point Dirichlet conditions' names: reaction_point_<name>_<axis>_N */
       std::vector<std::string> reaction_points;
-      /** the rigid plates' names: plate_<name>_{displacement_<axis>_mm,force_<axis>_N} */
-      std::vector<std::string> plates;
       /**
-       * the number of each plate's rotation components (0 guided, 1 in 2D, 3 in
-       * 3D): plate_<name>_rotation_rad (2D), plate_<name>_rotation_<axis>_rad (3D)
+       * @brief A column of a boundary condition's own: its name, and its group:
+       * the columns of a group follow those of the groups before it, each group
+       * in the order the columns were added.
        */
-      std::vector<unsigned int> plate_rotations;
+      struct ConditionColumn
+      {
+        std::string  name;
+        unsigned int group = 0;
+      };
+      /**
+       * the boundary conditions' own columns (BoundaryConditions::Interface::
+       * add_statistics_columns(), with force_unit in their names), after the
+       * point reactions; StepStatistics::condition_values are in this order
+       */
+      std::vector<ConditionColumn> condition_columns;
       /** the contact zones' names: zone_<name>_{normal,tangential}_force_N */
       std::vector<std::string> zones;
       /**

@@ -1063,31 +1063,6 @@ namespace StabilizedLagrangian
     /** Axisymmetric: u_r = 0 at the DoFs on the axis r = 0. */
     void
     add_axis_constraints(AffineConstraints<double> &constraints) const;
-    /**
-     * Each rigid plate's reference DoFs (PlateMotion), chosen among the DoFs
-     * of its boundary that no hanging node constrains; refuse a plate whose
-     * DoFs a Dirichlet condition holds in a tied component, or whose nodes do
-     * not fix its rotation.
-     */
-    void
-    find_plate_dofs();
-    /**
-     * Calls @p f(dof, component, support point) for the DoFs of the tied
-     * components of plate @p p on the locally owned (and, with
-     * @p with_ghosts, ghost) cells, once per cell that has them.
-     */
-    template <typename Function>
-    void
-    for_each_plate_dof(unsigned int p, bool with_ghosts, const Function &f) const;
-    /** u_i = Σ_k C_ik u_{r_k} on each rigid plate's boundary (PlateMotion::coefficients()). */
-    void
-    add_plate_constraints(AffineConstraints<double> &constraints) const;
-    /**
-     * The boundary conditions' global terms (the rigid plates' forces F(t) at
-     * their reference DoFs, the point loads), in the residual and external_force.
-     */
-    void
-    add_plate_forces();
     /** What the boundary conditions read of the problem, now. */
     BoundaryConditions::Problem<dim>
     boundary_view() const;
@@ -1328,7 +1303,8 @@ namespace StabilizedLagrangian
         return "N";
       return column ? "N_per_mm" : "N/mm";
     }
-    /** The supports statistics.csv has columns for: the supported boundaries, the rigid plates. */
+    /** The supports statistics.csv has columns for: the supported boundaries, the conditions' own.
+     */
     StatisticsWriter::Supports
     statistics_supports() const;
     /**
@@ -1336,8 +1312,7 @@ namespace StabilizedLagrangian
      * stats.reactions: the sum over its constrained DoFs of the residual
      * without constraints (internal minus applied forces plus the contact
      * terms; a DoF on two such boundaries counts for the first), plus the
-     * springs' force ∫ −K (u − u_0); and each rigid plate's translation and
-     * force.
+     * springs' force ∫ −K (u − u_0); and the conditions' own statistics.
      */
     void
     compute_reactions(StepStatistics &stats) const;
@@ -1484,8 +1459,6 @@ namespace StabilizedLagrangian
     /** `Geometry/Axisymmetric` (2D): x₁ is the radius r ≥ 0, x₂ the axis of revolution */
     const bool                axisymmetric;
     const Parameters::Contact contact_parameters;
-    /** the rigid plates, parsed (names resolved by the run) */
-    Parameters::BoundaryConditions<dim> dirichlet_and_plates;
     /** the boundary condition plug-ins, in the registry's order of kinds */
     std::vector<std::unique_ptr<BoundaryConditions::Interface<dim>>> boundary_conditions;
     const Parameters::LoadStepping                                   load_stepping;
@@ -1607,35 +1580,6 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector contact_residual;
     /** owned: the nodal external (Neumann, spring, plate) forces of the last assembly */
     TrilinosWrappers::MPI::Vector external_force;
-    /**
-     * A rigid plate's motion u(X) = U + θ × (X − X_0), linear in its
-     * parameters q (the tied components of U; with `Rotation = free` also θ,
-     * scaled by the plate's size): u at a DoF in component c at X is
-     * a(X, c)·q. The plate's DoFs follow the values of m reference DoFs r_k,
-     * q = A_R⁻¹ u_R with A_R the rows a of the reference DoFs
-     * (doc/formulation.md, "Rigid plates").
-     */
-    struct PlateMotion
-    {
-      /** the parameters: 0..dim−1 the translation's components, dim.. the rotation's */
-      std::vector<unsigned int> modes;
-      /** the reference DoFs r_k, one per parameter */
-      std::vector<types::global_dof_index> dofs;
-      /** A_R⁻¹: the parameters from the reference DoFs' values */
-      FullMatrix<double> inverse;
-      /** X_0, where the force acts and θ turns about, and the length the rotation is scaled by */
-      Point<dim> point;
-      double     size = 1.;
-
-      /** a(X, c): the displacement in component @p c at @p X per parameter */
-      Vector<double>
-      row(const Point<dim> &X, unsigned int c) const;
-      /** C_i = A_R⁻ᵀ a(X, c): the DoF at @p X in component @p c is Σ_k C_ik u_{r_k} */
-      Vector<double>
-      coefficients(const Point<dim> &X, unsigned int c) const;
-    };
-    /** Each rigid plate's motion and reference DoFs */
-    std::vector<PlateMotion> plate_motions;
     /**
      * The vertices of the point loads and point Dirichlet conditions: the
      * vertex of the mesh nearest to each Point, refused when it is not at the
