@@ -114,12 +114,13 @@ namespace StabilizedLagrangian
    * file): contact_problem.cc the mesh and the setup, setup_checks.cc the
    * checks of the scene, dofs.cc DoFs, constraints and sparsity,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
-   * load_path.cc the load steps, nested_loops.cc the loops of seed §2.2,
-   * newton.cc the Newton iteration, refinement.cc adaptive
-   * refinement, run_state_list.cc the run's state (what a step cut restores
-   * and a checkpoint keeps), checkpoint.cc checkpoints, inf_sup_test.cc the
-   * inf-sup test;
-   * output in source/postprocessing/output.cc.
+   * load_path.cc the load steps, run_summary.cc the run's summary,
+   * nested_loops.cc the loops of seed §2.2, newton.cc the Newton iteration,
+   * newton_line_search.cc its line search, converged_step.cc what an accepted
+   * step commits, refinement.cc adaptive refinement, run_state_list.cc the
+   * run's state (what a step cut restores and a checkpoint keeps),
+   * checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test; the output
+   * files are written by SolutionOutput (postprocessing/solution_output.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -354,7 +355,7 @@ namespace StabilizedLagrangian
     ContactConditionsData<dim>
     conditions_data();
 
-    // --- load_path.cc: load steps, step cuts, the log and run_summary.csv ---
+    // --- load_path.cc: load steps, step cuts, the log; run_summary.cc: run_summary.csv ---
     /** What the refinement cycles took in all (an accuracy target reports it). */
     struct CycleTotals
     {
@@ -532,7 +533,8 @@ namespace StabilizedLagrangian
                 const std::vector<unsigned char>              &statuses,
                 unsigned int                                   end) const;
 
-    // --- newton.cc: the Newton loop (nested or generalized), its line search ---
+    // --- newton.cc: the Newton loop (nested or generalized); newton_line_search.cc: its line
+    // search ---
     bool
     newton_loop(StepStatistics    &stats,
                 const unsigned int geometry_iteration,
