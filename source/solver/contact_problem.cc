@@ -137,6 +137,9 @@ namespace StabilizedLagrangian
         prm.leave_subsection();
       }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
+    // the displacement's element from the start: the boundary conditions'
+    // view (boundary_view()) reads it before the first DoFs are set up
+    fe_u = fe_pair->displacement_element();
     choose_complementarity();
     if (!contact_zones.empty() && weighted_complementarity())
       throw InputError("Contact/Zone " + contact_zones[0].name +
