@@ -28,6 +28,159 @@ namespace StabilizedLagrangian
      */
     constexpr double force_scale_floor = 1e-4;
 
+    /**
+     * The work space of the volume assembly of one cell (assemble_volume()):
+     * the values of the displacement's shape functions, the cell's DoFs and
+     * coefficients, and its matrix and residual.
+     */
+    template <int dim> struct VolumeScratch
+    {
+      /** @p axisymmetric: the values and points give the hoop strain u_r/r and the weight 2πr */
+      VolumeScratch(const FiniteElement<dim>  &fe,
+                    const Quadrature<dim>     &cell_quadrature,
+                    const Quadrature<dim>     &centre,
+                    const Quadrature<dim - 1> &face_quadrature,
+                    const bool                 axisymmetric)
+          : axisymmetric(axisymmetric)
+          , fe_values(
+                fe,
+                cell_quadrature,
+                update_gradients | update_JxW_values |
+                    (axisymmetric ? update_values | update_quadrature_points : update_default))
+          , centre_values(fe, centre, update_gradients | update_JxW_values)
+          , neumann_values(
+                fe, face_quadrature, update_values | update_quadrature_points | update_JxW_values)
+          , cell_matrix(fe.n_dofs_per_cell(), fe.n_dofs_per_cell())
+          , cell_rhs(fe.n_dofs_per_cell())
+          , cell_external(fe.n_dofs_per_cell())
+          , dofs(fe.n_dofs_per_cell())
+          , coefficients(fe.n_dofs_per_cell())
+          , component(fe.n_dofs_per_cell())
+          , tangent_times_grad(fe.n_dofs_per_cell())
+          , hoop_of_shape(fe.n_dofs_per_cell())
+          , hoop_times_grad(fe.n_dofs_per_cell())
+      {
+        for (unsigned int i = 0; i < component.size(); ++i)
+          component[i] = fe.system_to_component_index(i).first;
+      }
+
+      /** ∇u at quadrature point @p q of the cell. */
+      Tensor<2, dim>
+      gradient(const unsigned int q) const
+      {
+        Tensor<2, dim> grad_u;
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
+        return grad_u;
+      }
+
+      /** Axisymmetric: the hoop strain u_r/r at @p q, and φ_i,r/r into hoop_of_shape. */
+      double
+      hoop_strain(const unsigned int q)
+      {
+        const double radius = fe_values.quadrature_point(q)[0];
+        double       hoop   = 0.;
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          {
+            hoop_of_shape[i] = component[i] == 0 ? fe_values.shape_value(i, q) / radius : 0.;
+            hoop += coefficients[i] * hoop_of_shape[i];
+          }
+        return hoop;
+      }
+
+      /**
+       * F-bar (@p at_centre) and mixed: the gradients at the samples (the
+       * centre, or the quadrature points) into @p projection.
+       */
+      void
+      project_volume(const bool at_centre, Materials::VolumeProjection<dim> &projection)
+      {
+        samples = at_centre ? &centre_values : &fe_values;
+        sample_gradients.assign(samples->n_quadrature_points, Tensor<2, dim>());
+        for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            sample_gradients[k][component[i]] += coefficients[i] * samples->shape_grad(i, k);
+        projection.reinit(
+            samples->get_quadrature().get_points(), samples->get_JxW_values(), sample_gradients);
+      }
+
+      /** Add P : ∇φ_i (and the hoop stress times φ_i,r/r) at @p q to the residual. */
+      void
+      add_point_residual(const unsigned int              q,
+                         const Materials::Response<dim> &response,
+                         const double                    JxW)
+      {
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
+        if (axisymmetric)
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            cell_rhs(i) += response.hoop_stress * hoop_of_shape[i] * JxW;
+      }
+
+      /**
+       * Add ∇φ_i : A : ∇φ_j at @p q (reference point @p unit) to the matrix,
+       * with F-bar and mixed (@p projection) also ∂P̃/∂v̄ ⊗ ∂v̄/∂u_j through the
+       * samples (@p d_kept = ∂P̃/∂v̄), axisymmetric the hoop rows and columns.
+       */
+      void
+      add_point_tangent(const unsigned int                      q,
+                        const Point<dim>                       &unit,
+                        const Materials::Response<dim>         &response,
+                        const Tensor<2, dim>                   &d_kept,
+                        const Materials::VolumeProjection<dim> *projection,
+                        const double                            JxW)
+      {
+        const unsigned int n_dofs = dofs.size();
+        // A : ∇φ_j, where ∇φ_j has only the row component[j]
+        for (unsigned int j = 0; j < n_dofs; ++j)
+          {
+            const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
+            if (projection)
+              {
+                double kept_derivative = 0.;
+                for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
+                  kept_derivative +=
+                      projection->sample_weight(unit, k) *
+                      (projection->sample_derivative(k)[component[j]] * samples->shape_grad(j, k));
+                tangent_times_grad[j] += kept_derivative * d_kept;
+              }
+            // axisymmetric: ∂P/∂F₃₃ φ_j,r/r, and the hoop row ∂P₃₃/∂F : ∇̃φ_j
+            if (axisymmetric)
+              {
+                tangent_times_grad[j] += hoop_of_shape[j] * response.hoop_column;
+                hoop_times_grad[j] =
+                    response.hoop_row[component[j]] * g + response.hoop_hoop * hoop_of_shape[j];
+              }
+          }
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            const Tensor<1, dim> gi = fe_values.shape_grad(i, q) * JxW;
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              cell_matrix(i, j) += tangent_times_grad[j][component[i]] * gi;
+            if (axisymmetric && hoop_of_shape[i] != 0.)
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                cell_matrix(i, j) += hoop_of_shape[i] * hoop_times_grad[j] * JxW;
+          }
+      }
+
+      const bool         axisymmetric;
+      FEValues<dim>      fe_values;
+      FEValues<dim>      centre_values; ///< F-bar: the gradient at the centre (one-point Gauss)
+      FEFaceValues<dim>  neumann_values;
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs, cell_external;
+      std::vector<types::global_dof_index> dofs;
+      std::vector<double>                  coefficients;
+      std::vector<unsigned int>            component;
+      std::vector<Tensor<2, dim>>          tangent_times_grad;
+      std::vector<double>                  hoop_of_shape, hoop_times_grad; // axisymmetric
+      std::vector<Tensor<2, dim>>          sample_gradients;               // F-bar and mixed
+      /** F-bar and mixed: the values at the samples (project_volume()) */
+      const FEValues<dim> *samples = nullptr;
+    };
   } // namespace
 
   template <int dim>
@@ -87,31 +240,15 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::assemble_volume(const bool assemble_matrix)
   {
-    const FiniteElement<dim> &fe = *fe_u;
-    // axisymmetric: the values and points give the hoop strain u_r/r and the weight 2πr
-    FEValues<dim> fe_values(
-        fe,
-        cell_quadrature,
-        update_gradients | update_JxW_values |
-            (axisymmetric ? update_values | update_quadrature_points : update_default));
-    // F-bar: the gradient at the cell's centre (the one-point Gauss rule)
-    FEValues<dim>      centre_values(fe, cell_gauss(1), update_gradients | update_JxW_values);
-    FEFaceValues<dim>  neumann_values(fe,
-                                     face_gauss(fe_pair->displacement_degree() + 1),
-                                     update_values | update_quadrature_points | update_JxW_values);
-    const unsigned int n_dofs = fe.n_dofs_per_cell();
-    const unsigned int n_q    = cell_quadrature.size();
-    FullMatrix<double> cell_matrix(n_dofs, n_dofs);
-    Vector<double>     cell_rhs(n_dofs), cell_external(n_dofs);
-    std::vector<types::global_dof_index> dofs(n_dofs);
-    std::vector<double>                  coefficients(n_dofs);
-    std::vector<unsigned int>            component(n_dofs);
-    for (unsigned int i = 0; i < n_dofs; ++i)
-      component[i] = fe.system_to_component_index(i).first;
-    std::vector<Tensor<2, dim>> tangent_times_grad(n_dofs);
-    std::vector<double>         hoop_of_shape(n_dofs), hoop_times_grad(n_dofs); // axisymmetric
-    std::vector<Tensor<2, dim>> sample_gradients;                               // F-bar and mixed
-
+    VolumeScratch<dim>                    scratch(*fe_u,
+                               cell_quadrature,
+                               cell_gauss(1),
+                               face_gauss(fe_pair->displacement_degree() + 1),
+                               axisymmetric);
+    FEValues<dim>                        &fe_values    = scratch.fe_values;
+    std::vector<types::global_dof_index> &dofs         = scratch.dofs;
+    std::vector<double>                  &coefficients = scratch.coefficients;
+    const unsigned int                    n_dofs       = dofs.size();
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -120,47 +257,24 @@ namespace StabilizedLagrangian
           for (unsigned int i = 0; i < n_dofs; ++i)
             coefficients[i] = ghosted_solution(dofs[i]);
           const Materials::BodyMaterial<dim> &body = body_of(cell);
-          cell_matrix                              = 0.;
-          cell_rhs                                 = 0.;
+          scratch.cell_matrix                      = 0.;
+          scratch.cell_rhs                         = 0.;
           // F-bar and mixed: the volume change each point keeps, projected
           // from the samples (the centre, or the quadrature points)
           std::optional<Materials::VolumeProjection<dim>> projection;
-          const FEValues<dim>                            *samples = nullptr;
           if (body.modified_volume())
             {
               projection.emplace(volume_projection(body));
               if (body.volumetric == Materials::BodyMaterial<dim>::Volumetric::f_bar)
-                {
-                  centre_values.reinit(cell);
-                  samples = &centre_values;
-                }
-              else
-                samples = &fe_values;
-              sample_gradients.assign(samples->n_quadrature_points, Tensor<2, dim>());
-              for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
-                for (unsigned int i = 0; i < n_dofs; ++i)
-                  sample_gradients[k][component[i]] += coefficients[i] * samples->shape_grad(i, k);
-              projection->reinit(samples->get_quadrature().get_points(),
-                                 samples->get_JxW_values(),
-                                 sample_gradients);
+                scratch.centre_values.reinit(cell);
+              scratch.project_volume(
+                  body.volumetric == Materials::BodyMaterial<dim>::Volumetric::f_bar, *projection);
             }
-          for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
-              Tensor<2, dim> grad_u;
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                grad_u[component[i]] += coefficients[i] * fe_values.shape_grad(i, q);
+              const Tensor<2, dim> grad_u = scratch.gradient(q);
               // axisymmetric: φ_i,r / r, the hoop strain of a radial shape function
-              double radius = 0., hoop = 0.;
-              if (axisymmetric)
-                {
-                  radius = fe_values.quadrature_point(q)[0];
-                  for (unsigned int i = 0; i < n_dofs; ++i)
-                    {
-                      hoop_of_shape[i] =
-                          component[i] == 0 ? fe_values.shape_value(i, q) / radius : 0.;
-                      hoop += coefficients[i] * hoop_of_shape[i];
-                    }
-                }
+              const double             hoop = axisymmetric ? scratch.hoop_strain(q) : 0.;
               const Point<dim>        &unit = cell_quadrature.point(q);
               Materials::Response<dim> response;
               Tensor<2, dim>           d_kept; // ∂P̃/∂v̄
@@ -184,61 +298,24 @@ namespace StabilizedLagrangian
                 }
               const double JxW = fe_values.JxW(q) *
                                  (axisymmetric ? radial_weight(fe_values.quadrature_point(q)) : 1.);
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                cell_rhs(i) += response.stress[component[i]] * fe_values.shape_grad(i, q) * JxW;
-              if (axisymmetric)
-                for (unsigned int i = 0; i < n_dofs; ++i)
-                  cell_rhs(i) += response.hoop_stress * hoop_of_shape[i] * JxW;
-              if (!assemble_matrix)
-                continue;
-              // A : ∇φ_j, where ∇φ_j has only the row component[j] (with F-bar
-              // and mixed also ∂P̃/∂v̄ ⊗ ∂v̄/∂u_j through the samples)
-              for (unsigned int j = 0; j < n_dofs; ++j)
-                {
-                  const Tensor<1, dim> &g = fe_values.shape_grad(j, q);
-                  for (unsigned int k = 0; k < dim; ++k)
-                    for (unsigned int l = 0; l < dim; ++l)
-                      tangent_times_grad[j][k][l] = response.tangent[k][l][component[j]] * g;
-                  if (projection)
-                    {
-                      double kept_derivative = 0.;
-                      for (unsigned int k = 0; k < samples->n_quadrature_points; ++k)
-                        kept_derivative += projection->sample_weight(unit, k) *
-                                           (projection->sample_derivative(k)[component[j]] *
-                                            samples->shape_grad(j, k));
-                      tangent_times_grad[j] += kept_derivative * d_kept;
-                    }
-                  // axisymmetric: ∂P/∂F₃₃ φ_j,r/r, and the hoop row ∂P₃₃/∂F : ∇̃φ_j
-                  if (axisymmetric)
-                    {
-                      tangent_times_grad[j] += hoop_of_shape[j] * response.hoop_column;
-                      hoop_times_grad[j] = response.hoop_row[component[j]] * g +
-                                           response.hoop_hoop * hoop_of_shape[j];
-                    }
-                }
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                {
-                  const Tensor<1, dim> gi = fe_values.shape_grad(i, q) * JxW;
-                  for (unsigned int j = 0; j < n_dofs; ++j)
-                    cell_matrix(i, j) += tangent_times_grad[j][component[i]] * gi;
-                  if (axisymmetric && hoop_of_shape[i] != 0.)
-                    for (unsigned int j = 0; j < n_dofs; ++j)
-                      cell_matrix(i, j) += hoop_of_shape[i] * hoop_times_grad[j] * JxW;
-                }
+              scratch.add_point_residual(q, response, JxW);
+              if (assemble_matrix)
+                scratch.add_point_tangent(
+                    q, unit, response, d_kept, projection ? &*projection : nullptr, JxW);
             }
 
           // the force scale of the scaled Newton criterion: internal forces
           // without the Dirichlet constraints, so their rows hold the reactions
-          hanging_constraints.distribute_local_to_global(cell_rhs, dofs, internal_force);
+          hanging_constraints.distribute_local_to_global(scratch.cell_rhs, dofs, internal_force);
           add_boundary_loads(cell,
                              dofs,
                              coefficients,
-                             neumann_values,
-                             cell_matrix,
-                             cell_rhs,
-                             cell_external,
+                             scratch.neumann_values,
+                             scratch.cell_matrix,
+                             scratch.cell_rhs,
+                             scratch.cell_external,
                              assemble_matrix);
-          add_to_global_system(cell_matrix, cell_rhs, dofs, assemble_matrix);
+          add_to_global_system(scratch.cell_matrix, scratch.cell_rhs, dofs, assemble_matrix);
         }
   }
 

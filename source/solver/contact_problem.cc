@@ -77,6 +77,24 @@ namespace StabilizedLagrangian
       prm.leave_subsection();
       return motion;
     }
+
+    /**
+     * Per face number, the DoFs of @p fe on that face, ascending (the face's
+     * own DoFs: FE_SimplexP's has_support_on_face() says true for all).
+     */
+    template <int dim>
+    std::vector<std::vector<unsigned int>>
+    dofs_on_each_face(const FiniteElement<dim> &fe)
+    {
+      std::vector<std::vector<unsigned int>> result(fe.reference_cell().n_faces());
+      for (unsigned int face = 0; face < result.size(); ++face)
+        {
+          for (unsigned int j = 0; j < fe.n_dofs_per_face(face); ++j)
+            result[face].push_back(fe.face_to_cell_index(j, face));
+          std::sort(result[face].begin(), result[face].end());
+        }
+      return result;
+    }
   } // namespace
 
   template <int dim>
@@ -137,9 +155,11 @@ namespace StabilizedLagrangian
         prm.leave_subsection();
       }
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
-    // the displacement's element from the start: the boundary conditions'
-    // view (boundary_view()) reads it before the first DoFs are set up
-    fe_u = fe_pair->displacement_element();
+    // the elements from the start: the boundary conditions' view
+    // (boundary_view()) reads the displacement's before the first DoFs are set up
+    fe_u                    = fe_pair->displacement_element();
+    fe_m                    = fe_pair->multiplier_element(any_friction() ? dim : 1);
+    multiplier_dofs_on_face = dofs_on_each_face(*fe_m);
     choose_complementarity();
     if (!contact_zones.empty() && weighted_complementarity())
       throw InputError("Contact/Zone " + contact_zones[0].name +

@@ -112,7 +112,7 @@ namespace StabilizedLagrangian
    * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
    * phase, in source/solver/ (each section of the private part names its
    * file): contact_problem.cc the mesh and the setup, setup_checks.cc the
-   * checks of the scene, dofs.cc DoFs, constraints and sparsity,
+   * checks of the scene, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, run_summary.cc the run's summary,
    * nested_loops.cc the loops of seed §2.2, newton.cc the Newton iteration,
@@ -947,9 +947,18 @@ namespace StabilizedLagrangian
     void
     warn_if_body_behind_obstacle() const;
 
-    // --- dofs.cc: DoFs, multiplier numbering, constraints, sparsity ---
+    // --- dofs.cc: DoFs, multiplier numbering, sparsity; constraints.cc: the constraints ---
     void
     setup_dofs();
+    /**
+     * The contact partner of this mesh: the rigid obstacle, or the deformable
+     * master's surface holding the master faces near this rank's slave faces.
+     */
+    std::unique_ptr<Contact::Partner<dim>>
+    make_partner() const;
+    /** The vectors of the Newton system on this mesh's DoFs; the scaling of the residual rows. */
+    void
+    reinit_system_vectors();
     /** The hanging-node and Newton constraints on the locally relevant DoFs (collective). */
     void
     setup_constraints();
