@@ -196,11 +196,7 @@ namespace StabilizedLagrangian
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
     loops.set_can_change(Loop::geometry, !(partner->is_flat() && !finite_strain()));
     loops.set_can_change(Loop::friction, any_friction() && any_pressure_dependent_threshold());
-    check_body_is_held();
-    warn_if_body_behind_obstacle();
-    warn_if_pair_locks();
-    warn_if_stick_traction_oscillates();
-    warn_if_dirichlet_not_ramped();
+    SceneChecks<dim>(scene_view()).warn_before_run();
   }
 
   namespace
@@ -228,7 +224,7 @@ namespace StabilizedLagrangian
   void
   ContactProblem<dim>::setup_after_refinement()
   {
-    choose_augmentation_parameters();
+    SceneChecks<dim>(scene_view()).choose_augmentation_parameters(chosen);
     double E_max = 0., h_min = std::numeric_limits<double>::max();
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -242,7 +238,7 @@ namespace StabilizedLagrangian
     touching_gap        = touching_gap_fraction * GridTools::diameter(triangulation);
     bounds.set_body_diameter(GridTools::diameter(triangulation));
     setup_dofs();
-    free_rigid_motions = rigid_motions_left_free();
+    free_rigid_motions = SceneChecks<dim>(scene_view()).rigid_motions_left_free();
     setup_contact_points();
     material_history.initialize(
         triangulation,

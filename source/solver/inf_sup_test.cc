@@ -2,14 +2,18 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
-#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/inf_sup_test.h>
+#include <stabilized_lagrangian/solver/linear_solver.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -18,19 +22,6 @@
 
 namespace StabilizedLagrangian
 {
-  // The numerical inf-sup test of the displacement / multiplier pair: the
-  // discrete inf-sup constant of the normal trace pairing
-  //
-  //   β_h = inf_μ sup_v ∫Γc μ (v·n) / (‖μ‖_{-1/2,h} ‖v‖_1)
-  //
-  // is the square root of the smallest eigenvalue of S x = β² M x with
-  // S = B K⁻¹ Bᵀ, B_aj = ∫Γc ψ_a (φ_j·n), K the H¹ Gram matrix of the
-  // displacement (∫ ∇φ_i:∇φ_j + φ_i·φ_j, Dirichlet DoFs removed) and M the
-  // multiplier Gram matrix of the mesh-dependent norm
-  // ‖μ‖²_{-1/2,h} = Σ_F h_F ‖μ‖²_{L²(F)}, equivalent to the H^{-1/2}(Γc)
-  // norm on quasi-uniform contact meshes (Chapelle and Bathe's test, with
-  // this norm for the multiplier).
-
   namespace
   {
     /**
@@ -63,36 +54,48 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
-  InfSupRecord
-  ContactProblem<dim>::compute_inf_sup_constant()
+  InfSupTest<dim>::InfSupTest(const MPI_Comm             communicator,
+                              const Parameters::Contact &contact,
+                              const ConditionalOStream  &pcout)
+      : communicator(communicator)
+      , pcout(pcout)
+      , fe_pair(contact.fe_pair)
+      , check_asked(contact.check_inf_sup)
+      , one_rank(Utilities::MPI::n_mpi_processes(communicator) == 1)
   {
-    AssertThrow(Utilities::MPI::n_mpi_processes(mpi_communicator) == 1,
+  }
+
+  template <int dim>
+  InfSupRecord
+  InfSupTest<dim>::compute(const View &view) const
+  {
+    AssertThrow(Utilities::MPI::n_mpi_processes(view.communicator) == 1,
                 ExcMessage("The inf-sup test runs on one MPI rank."));
 
     // K: H¹ Gram matrix of the displacement, Dirichlet DoFs constrained
-    AffineConstraints<double> constraints(locally_relevant_u);
-    DoFTools::make_hanging_node_constraints(dof_handler_u, constraints);
-    add_homogeneous_dirichlet_constraints(constraints);
+    AffineConstraints<double> constraints(view.locally_relevant_u);
+    DoFTools::make_hanging_node_constraints(view.displacement_dofs, constraints);
+    view.add_dirichlet_constraints(constraints);
     constraints.close();
     TrilinosWrappers::SparseMatrix gram_u;
-    assemble_h1_gram(constraints, gram_u);
+    assemble_h1_gram(view, constraints, gram_u);
 
     // B (rows: the λ_n DoFs) and M
     std::map<types::global_dof_index, unsigned int> normal_row;
-    for (const auto &[row, component] : locally_owned_multiplier_components())
+    for (const auto &[row, component] : view.multiplier_components)
       if (component == 0)
         normal_row.emplace(row, normal_row.size());
     const unsigned int                         n_rows = normal_row.size();
     std::vector<TrilinosWrappers::MPI::Vector> trace_rows(
-        n_rows, TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
+        n_rows, TrilinosWrappers::MPI::Vector(view.locally_owned_u, view.communicator));
     FullMatrix<double> gram_m(n_rows, n_rows);
     const double       contact_mesh_size =
-        assemble_trace_pairing(constraints, normal_row, trace_rows, gram_m);
+        assemble_trace_pairing(view, constraints, normal_row, trace_rows, gram_m);
 
     // S = B K⁻¹ Bᵀ, one solve per multiplier row
-    LinearSolvers::DirectSolver   solver(linear_solver_parameters.direct_solver);
+    LinearSolvers::DirectSolver   solver(view.direct_solver);
     FullMatrix<double>            schur(n_rows, n_rows);
-    TrilinosWrappers::MPI::Vector lifted(locally_owned_u, mpi_communicator);
+    TrilinosWrappers::MPI::Vector lifted(view.locally_owned_u, view.communicator);
     for (unsigned int a = 0; a < n_rows; ++a)
       {
         trace_rows[a].compress(VectorOperation::add);
@@ -102,11 +105,11 @@ namespace StabilizedLagrangian
           schur(a, b) = schur(b, a) = lifted * trace_rows[b];
       }
 
-    const FullMatrix<double> prolongation = multiplier_prolongation(normal_row);
+    const FullMatrix<double> prolongation = multiplier_prolongation(view, normal_row);
     const double smallest = smallest_generalized_eigenvalue(schur, gram_m, prolongation);
     InfSupRecord record;
     record.contact_mesh_size      = contact_mesh_size;
-    record.displacement_dofs      = n_u;
+    record.displacement_dofs      = view.n_displacement_dofs;
     record.normal_multiplier_dofs = prolongation.n();
     record.beta                   = std::sqrt(std::max(smallest, 0.));
     return record;
@@ -114,14 +117,16 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::assemble_h1_gram(const AffineConstraints<double> &constraints,
-                                        TrilinosWrappers::SparseMatrix  &gram_u) const
+  InfSupTest<dim>::assemble_h1_gram(const View                      &view,
+                                    const AffineConstraints<double> &constraints,
+                                    TrilinosWrappers::SparseMatrix  &gram_u)
   {
-    DynamicSparsityPattern dsp(locally_relevant_u);
-    DoFTools::make_sparsity_pattern(dof_handler_u, dsp, constraints, false);
-    gram_u.reinit(locally_owned_u, locally_owned_u, dsp, mpi_communicator);
+    DynamicSparsityPattern dsp(view.locally_relevant_u);
+    DoFTools::make_sparsity_pattern(view.displacement_dofs, dsp, constraints, false);
+    gram_u.reinit(view.locally_owned_u, view.locally_owned_u, dsp, view.communicator);
 
-    const FiniteElement<dim> &fe = *fe_u;
+    const FiniteElement<dim> &fe              = view.displacement_fe;
+    const Quadrature<dim>    &cell_quadrature = view.cell_quadrature;
     FEValues<dim>             fe_values(
         fe, cell_quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int        n_dofs = fe.n_dofs_per_cell();
@@ -130,7 +135,7 @@ namespace StabilizedLagrangian
       component[i] = fe.system_to_component_index(i).first;
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
+    for (const auto &cell : view.displacement_dofs.active_cell_iterators())
       {
         fe_values.reinit(cell);
         cell_matrix = 0.;
@@ -149,31 +154,31 @@ namespace StabilizedLagrangian
 
   template <int dim>
   double
-  ContactProblem<dim>::assemble_trace_pairing(
+  InfSupTest<dim>::assemble_trace_pairing(
+      const View                                            &view,
       const AffineConstraints<double>                       &constraints,
       const std::map<types::global_dof_index, unsigned int> &normal_row,
       std::vector<TrilinosWrappers::MPI::Vector>            &trace_rows,
-      FullMatrix<double>                                    &gram_m) const
+      FullMatrix<double>                                    &gram_m)
   {
-    // a Gauss rule exact for both
-    const Quadrature<dim - 1> quadrature =
-        face_gauss(std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1);
-    const unsigned int        n_dofs = fe_u->n_dofs_per_cell();
-    std::vector<unsigned int> component(n_dofs);
+    const Quadrature<dim - 1> &quadrature = view.trace_quadrature;
+    const FiniteElement<dim>  &fe_u       = view.displacement_fe;
+    const unsigned int         n_dofs     = fe_u.n_dofs_per_cell();
+    std::vector<unsigned int>  component(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
-      component[i] = fe_u->system_to_component_index(i).first;
-    FaceEvaluator  evaluator(spaces, quadrature, false);
+      component[i] = fe_u.system_to_component_index(i).first;
+    FaceEvaluator  evaluator(view.spaces, quadrature, false);
     Vector<double> cell_row(n_dofs);
     double         contact_mesh_size = 0.;
-    for (const auto &face : contact_faces)
+    for (const auto &face : view.contact_faces)
       {
-        evaluator.reinit(face, ghosted_solution);
+        evaluator.reinit(face, view.ghosted_solution);
         const double h    = face.cell->face(face.face_no)->diameter();
         contact_mesh_size = std::max(contact_mesh_size, h);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
             const Tensor<1, dim> normal =
-                partner->project(evaluator.u_values->quadrature_point(q)).normal;
+                view.partner.project(evaluator.u_values->quadrature_point(q)).normal;
             const double w = evaluator.u_values->JxW(q);
             for (unsigned int a = 0; a < evaluator.m_dofs.size(); ++a)
               {
@@ -200,14 +205,15 @@ namespace StabilizedLagrangian
 
   template <int dim>
   FullMatrix<double>
-  ContactProblem<dim>::multiplier_prolongation(
-      const std::map<types::global_dof_index, unsigned int> &normal_row) const
+  InfSupTest<dim>::multiplier_prolongation(
+      const View &view, const std::map<types::global_dof_index, unsigned int> &normal_row)
   {
     // constrained multipliers (hanging nodes, coarser multiplier mesh) are
     // combinations of free ones, μ = P μ_free
-    const unsigned int        n_rows = normal_row.size();
-    std::vector<unsigned int> free_index(n_rows, numbers::invalid_unsigned_int);
-    unsigned int              n_free = 0;
+    const AffineConstraints<double> &hanging_constraints = view.hanging_constraints;
+    const unsigned int               n_rows              = normal_row.size();
+    std::vector<unsigned int>        free_index(n_rows, numbers::invalid_unsigned_int);
+    unsigned int                     n_free = 0;
     for (const auto &[dof, row] : normal_row)
       if (!hanging_constraints.is_constrained(dof))
         free_index[row] = n_free++;
@@ -223,27 +229,23 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::run_inf_sup_test(const unsigned int n_meshes)
+  InfSupTest<dim>::run(const unsigned int                            n_meshes,
+                       const std::string                            &directory,
+                       const std::function<View(unsigned int mesh)> &mesh) const
   {
-    std::filesystem::create_directories(output_directory);
-    const std::string filename = output_directory + "/inf_sup.csv";
+    std::filesystem::create_directories(directory);
+    const std::string filename = directory + "/inf_sup.csv";
     std::ofstream     table(filename);
     table << "mesh,contact_mesh_size_mm,displacement_dofs,normal_multiplier_dofs,beta\n";
-    pcout << "Inf-sup test of the pair " << contact_parameters.fe_pair
+    pcout << "Inf-sup test of the pair " << fe_pair
           << " (normal multiplier in the norm sum_F h_F |mu|^2_L2(F), displacement in H1)\n"
           << "  mesh   h (mm)   displacement DoFs   multiplier DoFs   beta_h\n";
-    setup();
-    for (unsigned int mesh = 1; mesh <= n_meshes; ++mesh)
+    for (unsigned int k = 1; k <= n_meshes; ++k)
       {
-        if (mesh > 1)
-          {
-            refine_globally();
-            setup_after_refinement();
-          }
-        const InfSupRecord r = compute_inf_sup_constant();
-        table << mesh << ',' << std::setprecision(10) << r.contact_mesh_size << ','
+        const InfSupRecord r = compute(mesh(k));
+        table << k << ',' << std::setprecision(10) << r.contact_mesh_size << ','
               << r.displacement_dofs << ',' << r.normal_multiplier_dofs << ',' << r.beta << '\n';
-        pcout << std::setw(6) << mesh << std::setw(9) << std::setprecision(4) << r.contact_mesh_size
+        pcout << std::setw(6) << k << std::setw(9) << std::setprecision(4) << r.contact_mesh_size
               << std::setw(20) << r.displacement_dofs << std::setw(18) << r.normal_multiplier_dofs
               << "   " << std::scientific << std::setprecision(4) << r.beta << std::defaultfloat
               << std::endl;
@@ -253,55 +255,37 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::check_inf_sup()
+  InfSupTest<dim>::check(const View &view, const unsigned int cycle, TimerOutput &timer)
   {
-    if (!inf_sup_checked())
+    if (!checked())
       {
-        if (contact_parameters.check_inf_sup && cycle == 0)
+        if (check_asked && cycle == 0)
           pcout << "NOTE: `Contact/Check inf-sup` runs on one MPI rank; not checked on "
-                << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                << Utilities::MPI::n_mpi_processes(communicator)
                 << " (`--inf-sup N` checks a pair on one rank).\n";
         return;
       }
     TimerOutput::Scope scope(timer, "inf-sup check");
-    const InfSupRecord record = compute_inf_sup_constant();
-    const double       largest =
-        inf_sup_betas.empty() ? 0. : *std::max_element(inf_sup_betas.begin(), inf_sup_betas.end());
-    inf_sup_betas.push_back(record.beta);
+    const InfSupRecord record  = compute(view);
+    const double       largest = betas.empty() ? 0. : *std::max_element(betas.begin(), betas.end());
+    betas.push_back(record.beta);
     pcout << "Inf-sup check: beta_h = " << record.beta << " (" << record.normal_multiplier_dofs
           << " normal multipliers, contact faces up to " << record.contact_mesh_size << " mm)\n";
     // the stable pairs' beta_h grows towards its limit on coarse meshes and
     // then levels off; an unstable pair's falls (Q1/P0: by 40 % per halving
     // of h) or is zero (a multiplier space richer than the trace: doc/fe_pairs.md)
     if (record.beta < 1e-6)
-      pcout << "WARNING: the pair " << contact_parameters.fe_pair
+      pcout << "WARNING: the pair " << fe_pair
             << " is not inf-sup stable on this mesh: beta_h = " << record.beta
             << " (some multipliers act on no displacement; the Newton matrix is singular "
                "where contact is active). A stable pair: doc/fe_pairs.md.\n";
     else if (record.beta < 0.8 * largest)
-      pcout << "WARNING: beta_h of the pair " << contact_parameters.fe_pair
-            << " fell under refinement, from " << largest << " to " << record.beta
+      pcout << "WARNING: beta_h of the pair " << fe_pair << " fell under refinement, from "
+            << largest << " to " << record.beta
             << ": the pair is not inf-sup stable, and its multipliers may oscillate from "
                "node to node on finer meshes. A stable pair: doc/fe_pairs.md.\n";
   }
 
-  // Explicit instantiation of the members defined in this file (the class
-  // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                            \
-  template InfSupRecord ContactProblem<dim>::compute_inf_sup_constant();                               \
-  template void         ContactProblem<dim>::run_inf_sup_test(unsigned int);                           \
-  template void         ContactProblem<dim>::check_inf_sup();                                          \
-  template void         ContactProblem<dim>::assemble_h1_gram(const AffineConstraints<double> &,       \
-                                                      TrilinosWrappers::SparseMatrix &) const; \
-  template double       ContactProblem<dim>::assemble_trace_pairing(                                   \
-      const AffineConstraints<double> &,                                                         \
-      const std::map<types::global_dof_index, unsigned int> &,                                   \
-      std::vector<TrilinosWrappers::MPI::Vector> &,                                              \
-      FullMatrix<double> &) const;                                                               \
-  template FullMatrix<double> ContactProblem<dim>::multiplier_prolongation(                            \
-      const std::map<types::global_dof_index, unsigned int> &) const;
-
-  SL_INSTANTIATE(2)
-  SL_INSTANTIATE(3)
-#undef SL_INSTANTIATE
+  template class InfSupTest<2>;
+  template class InfSupTest<3>;
 } // namespace StabilizedLagrangian

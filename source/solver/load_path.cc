@@ -58,7 +58,7 @@ namespace StabilizedLagrangian
           }
         output_directory = cycle_directory(cycle);
         Timer cycle_clock;
-        check_inf_sup();
+        inf_sup.check(inf_sup_view(), cycle, timer);
         const bool converged = solve_load_path(resumed);
         record_cycle(cycle_clock.wall_time(), totals);
         if (!converged)
@@ -90,7 +90,7 @@ namespace StabilizedLagrangian
                                       force_unit(true) +
                                       ",estimated_error_sqrtNmm,estimated_relative_error,"
                                       "estimated_pressure_error,wall_time_s" +
-                                      std::string(inf_sup_checked() ? ",inf_sup_beta\n" : "\n"));
+                                      std::string(inf_sup.checked() ? ",inf_sup_beta\n" : "\n"));
     if (adaptive_refinement.errors_against_last_cycle && resume)
       pcout << "WARNING: `Adaptive refinement/Errors against the last cycle` is not measured "
                "on a resumed run (the earlier cycles' displacements are not in the "
@@ -121,8 +121,8 @@ namespace StabilizedLagrangian
         << std::setprecision(10) << last_normal_force << ',' << last_step.estimated_error << ','
         << last_step.relative_error() << ',' << last_step.estimated_pressure_error << ','
         << wall_time;
-    if (inf_sup_checked())
-      row << ',' << (inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
+    if (inf_sup.checked())
+      row << ',' << inf_sup.latest_beta();
     row << '\n';
     SafeFiles::append(run_directory + "/refinement_cycles.csv", row.str());
   }

@@ -146,8 +146,8 @@ namespace StabilizedLagrangian
     table.add("owned_dofs_max", owned_max);
     table.add("ghost_dofs_max", ghosts_max);
     table.add("weighted_complementarity", weighted_complementarity() ? 1 : 0);
-    if (inf_sup_checked())
-      table.add("inf_sup_beta", inf_sup_betas.empty() ? 0. : inf_sup_betas.back());
+    if (inf_sup.checked())
+      table.add("inf_sup_beta", inf_sup.latest_beta());
     // (with `automatic` also on the meshes it left to the direct solver: 0)
     if (linear_solver_parameters.iterative || linear_solver_parameters.automatic)
       {

@@ -20,7 +20,7 @@ namespace StabilizedLagrangian
   {
     /**
      * @brief The values given in @p contact; the automatic ones are chosen
-     * later (ContactProblem::choose_augmentation_parameters,
+     * later (SceneChecks::choose_augmentation_parameters,
      * ContactProblem::choose_complementarity), the named boundaries resolved
      * once the mesh is known (ContactProblem::resolve_boundaries).
      */

@@ -41,11 +41,13 @@
 #include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
+#include <stabilized_lagrangian/solver/inf_sup_test.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
 #include <stabilized_lagrangian/solver/run_state.h>
+#include <stabilized_lagrangian/solver/scene_checks.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 
 #include <algorithm>
@@ -93,15 +95,6 @@ namespace StabilizedLagrangian
     double schur_solve_seconds = 0.;
   };
 
-  /** @brief One row of the numerical inf-sup test (ContactProblem::run_inf_sup_test). */
-  struct InfSupRecord
-  {
-    double                  contact_mesh_size      = 0.; ///< largest face diameter on Γc
-    types::global_dof_index displacement_dofs      = 0;
-    types::global_dof_index normal_multiplier_dofs = 0;
-    double                  beta                   = 0.; ///< discrete inf-sup constant β_h
-  };
-
   /**
    * @brief Quasi-static frictional contact of a deformable body with a rigid
    * obstacle or a second deformable body, stabilized Lagrangian mixed
@@ -111,16 +104,19 @@ namespace StabilizedLagrangian
    * semi-multiplier Λ on Γc only, assembled as one monolithic system
    * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
    * phase, in source/solver/ (each section of the private part names its
-   * file): contact_problem.cc the mesh and the setup, setup_checks.cc the
-   * checks of the scene, dofs.cc DoFs and sparsity, constraints.cc the constraints,
+   * file): contact_problem.cc the mesh and the setup, setup_checks.cc what
+   * the checks of the scene and the inf-sup test read and the start of a
+   * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, run_summary.cc the run's summary,
    * nested_loops.cc the loops of seed §2.2, newton.cc the Newton iteration,
    * newton_line_search.cc its line search, converged_step.cc what an accepted
    * step commits, refinement.cc adaptive refinement, run_state_list.cc the
    * run's state (what a step cut restores and a checkpoint keeps),
-   * checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test; the output
-   * files are written by SolutionOutput (postprocessing/solution_output.h).
+   * checkpoint.cc checkpoints; the output files are written by
+   * SolutionOutput (postprocessing/solution_output.h), the scene is checked
+   * by SceneChecks (solver/scene_checks.h), the pair by InfSupTest
+   * (solver/inf_sup_test.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -171,32 +167,12 @@ namespace StabilizedLagrangian
     setup();
 
     /**
-     * @brief Numerical inf-sup test of the FE pair (source/solver/inf_sup_test.cc):
+     * @brief Numerical inf-sup test of the FE pair (InfSupTest, setup_checks.cc):
      * β_h on the scene's mesh and @p n_meshes − 1 global refinements of it,
      * printed and written to inf_sup.csv in the output directory. One MPI rank.
      */
     void
     run_inf_sup_test(const unsigned int n_meshes);
-
-    /** @brief β_h of the FE pair on the current mesh (see run_inf_sup_test). */
-    InfSupRecord
-    compute_inf_sup_constant();
-
-    /**
-     * @brief `Contact/Check inf-sup`: β_h on the current mesh, added to
-     * inf_sup_betas, with a warning when it is zero or has fallen below 0.8
-     * of its largest earlier value (inf_sup_test.cc). One MPI rank; a note
-     * and nothing else on more.
-     */
-    void
-    check_inf_sup();
-    /** Whether check_inf_sup() computes β_h in this run (the check asked for, one rank). */
-    bool
-    inf_sup_checked() const
-    {
-      return contact_parameters.check_inf_sup &&
-             Utilities::MPI::n_mpi_processes(mpi_communicator) == 1;
-    }
 
     /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
@@ -766,26 +742,6 @@ namespace StabilizedLagrangian
     continue_outputs(const unsigned long            cycles_bytes,
                      const StatisticsWriter::State &statistics_state);
 
-    // --- inf_sup_test.cc: the pieces of β_h ---
-    /** The H¹ Gram matrix K of the displacement, with @p constraints. */
-    void
-    assemble_h1_gram(const AffineConstraints<double> &constraints,
-                     TrilinosWrappers::SparseMatrix  &gram_u) const;
-    /**
-     * The rows of B, B_aj = ∫Γc ψ_a (φ_j·n), and the multiplier Gram matrix M
-     * of the mesh-dependent norm, for the λ_n DoFs numbered by @p normal_row;
-     * returns the largest contact face diameter.
-     */
-    double
-    assemble_trace_pairing(const AffineConstraints<double>                       &constraints,
-                           const std::map<types::global_dof_index, unsigned int> &normal_row,
-                           std::vector<TrilinosWrappers::MPI::Vector>            &trace_rows,
-                           FullMatrix<double>                                    &gram_m) const;
-    /** P of μ = P μ_free: the λ_n DoFs as combinations of the unconstrained ones. */
-    FullMatrix<double>
-    multiplier_prolongation(
-        const std::map<types::global_dof_index, unsigned int> &normal_row) const;
-
     // --- contact_problem.cc: the mesh, and the setup after each refinement ---
     void
     make_grid();
@@ -890,62 +846,20 @@ namespace StabilizedLagrangian
     void
     setup_after_refinement();
 
-    // --- setup_checks.cc: checks of the scene before the run: supports, warnings, r_n and r_t ---
-    /** chosen.r_n, chosen.r_t: the prm's, or the automatic ones on this mesh (reported). */
-    void
-    choose_augmentation_parameters();
-    /** The largest displacement increment the Dirichlet data prescribe over one nominal load step.
-     */
-    double
-    largest_dirichlet_increment();
-    /**
-     * Call f(vertex) at every vertex of the faces of boundary @p boundary_id
-     * on this rank's cells (a vertex shared by several faces is visited once
-     * per face).
-     */
-    template <typename Function>
-    void
-    for_each_boundary_vertex(const types::boundary_id boundary_id, const Function &f) const
-    {
-      BoundaryConditions::for_each_boundary_vertex<dim>(triangulation, boundary_id, f);
-    }
-    /**
-     * Collective: the rigid motions of the body that no Dirichlet condition
-     * holds, in words ("the translation along y"); empty if none (or two bodies).
-     * With @p with_contact the contact boundary holds too: along the
-     * obstacle's normal at each of its vertices where the contact is
-     * frictionless, in every direction where it has friction.
-     */
-    std::string
-    rigid_motions_left_free(bool with_contact = false) const;
-    /**
-     * Warn of a body that even its contact cannot hold (a frictionless contact
-     * holds only the normal direction): its Newton system is singular.
-     */
-    void
-    check_body_is_held() const;
+    // --- setup_checks.cc: what the checks of the scene (SceneChecks) and the
+    // inf-sup test (InfSupTest) read; the start of a body nothing holds ---
+    /** The scene as SceneChecks reads it, now. */
+    typename SceneChecks<dim>::View
+    scene_view() const;
+    /** The discretisation as InfSupTest reads it, now. */
+    typename InfSupTest<dim>::View
+    inf_sup_view() const;
     /** Collective: the number of contact points whose status χ is contact. */
     unsigned int
     points_in_contact() const;
     /** Put the contact points nearest to the obstacle in contact (an unheld body's start). */
     void
     close_nearest_points();
-    /** Warn when a prescribed displacement is not zero at t = 0 (applied whole in step 1). */
-    void
-    warn_if_dirichlet_not_ramped() const;
-    /** Warn when a material is nearly incompressible for the displacement degree (locking). */
-    void
-    warn_if_pair_locks() const;
-    /**
-     * Warn when F-bar or mixed on Q1 (the Q1/P0 mean dilatation) meets friction
-     * multipliers at every contact node near incompressibility: the stick-zone
-     * traction takes up the pressure checkerboard mode.
-     */
-    void
-    warn_if_stick_traction_oscillates() const;
-    /** Warn when most of the body starts behind the rigid obstacle's surface. */
-    void
-    warn_if_body_behind_obstacle() const;
 
     // --- dofs.cc: DoFs, multiplier numbering, sparsity; constraints.cc: the constraints ---
     void
@@ -1699,7 +1613,7 @@ namespace StabilizedLagrangian
     std::vector<TrilinosWrappers::MPI::Vector>              earlier_cycles;
     std::vector<std::pair<types::global_dof_index, double>> cycle_records;
     /** `Contact/Check inf-sup`: β_h of each cycle's mesh so far */
-    std::vector<double> inf_sup_betas;
+    InfSupTest<dim> inf_sup{mpi_communicator, contact_parameters, pcout};
     /** per adaptive refinement cycle, the cells this rank flagged for refinement */
     std::vector<std::vector<CellId>> refinement_history;
     /** the run's state: what a step cut restores and a checkpoint keeps */
