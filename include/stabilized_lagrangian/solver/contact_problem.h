@@ -79,12 +79,14 @@ namespace StabilizedLagrangian
    * checks of the scene, dofs.cc DoFs, constraints and sparsity,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, run_summary.cc the run's summary,
-   * nested_loops.cc the loops of seed §2.2, newton.cc the Newton iteration,
-   * newton_line_search.cc its line search, converged_step.cc what an accepted
+   * nested_loops.cc the loops of seed §2.2, newton.cc the view the Newton
+   * iteration reads, converged_step.cc what an accepted
    * step commits, refinement.cc adaptive refinement, run_state_list.cc the
    * run's state (what a step cut restores and a checkpoint keeps),
-   * checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test; the output
-   * files are written by SolutionOutput (postprocessing/solution_output.h).
+   * checkpoint.cc checkpoints, inf_sup_test.cc the inf-sup test. The Newton
+   * iteration is NewtonSolver's (solver/newton_solver.h: newton.cc,
+   * newton_singular_system.cc, newton_line_search.cc); the output files are
+   * written by SolutionOutput (postprocessing/solution_output.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -1397,9 +1399,9 @@ namespace StabilizedLagrangian
     ContactStart contact_start;
     /** relevant: the Dirichlet increment Δū of the load step (apply_dirichlet_values()) */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
-    /** whether Δū is non-zero: the step's first Newton iteration is then predictor_step() */
+    /** whether Δū is non-zero: the step's first Newton iteration is then the predictor */
     bool dirichlet_increment_nonzero = false;
-    /** set by predictor_step() around its assembly alone: add_to_global_system() adds K Δū */
+    /** set by the predictor around its assembly alone: add_to_global_system() adds K Δū */
     bool dirichlet_predictor = false;
 
     std::vector<ContactFace>            contact_faces;
