@@ -217,7 +217,7 @@ namespace StabilizedLagrangian
         partner->set_time(step_begin, time);
         extrapolate_last_step(step_size);
         apply_dirichlet_values(time);
-        if (!solve_load_step(stats) || !plausible_converged_state())
+        if (!solve_load_step(stats) || !newton.plausible_converged_state())
           {
             saved.restore();
             update_ghosts();

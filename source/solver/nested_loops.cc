@@ -128,14 +128,15 @@ namespace StabilizedLagrangian
       return false;
     TrilinosWrappers::MPI::Vector change = solution;
     change -= previous;
-    const double energy = displacement_energy(change);
-    if (!below_discretisation_error(energy, relative_change))
+    const double energy = newton.displacement_energy(change);
+    if (!newton.below_discretisation_error(energy, relative_change))
       return false;
     ++stats.adaptive_stops;
     if (output_parameters.log_newton)
       pcout << "  " << loop << " loop stops adaptively: last change " << energy
             << " sqrt(N mm), relative " << relative_change << ", estimated discretisation error "
-            << last_estimate.error << " sqrt(N mm), relative " << last_estimate.relative() << "\n";
+            << newton.last_estimate().error << " sqrt(N mm), relative "
+            << newton.last_estimate().relative() << "\n";
     return true;
   }
 
@@ -166,7 +167,7 @@ namespace StabilizedLagrangian
       {
         // the statuses are those of the converged iterate by construction
         ++stats.status_iterations;
-        return newton_loop(stats, k, j, 1);
+        return newton.solve(stats, k, j, 1);
       }
     // the statuses each iteration started from: with s and the pairing
     // frozen, statuses seen before lead to the same Newton solution, so a
@@ -177,7 +178,7 @@ namespace StabilizedLagrangian
       {
         ++stats.status_iterations;
         const TrilinosWrappers::MPI::Vector previous = adaptive_reference();
-        if (!newton_loop(stats, k, j, i))
+        if (!newton.solve(stats, k, j, i))
           return false;
         const unsigned int changes              = update_statuses();
         stats.inner_loops.back().status_changes = changes;
@@ -204,7 +205,7 @@ namespace StabilizedLagrangian
     ++stats.folded_loops;
     ++stats.status_iterations;
     const bool converged = fold_for_this_step(Loop::status, [&]() {
-      return newton_loop(stats, k, j, static_cast<unsigned int>(seen.size()));
+      return newton.solve(stats, k, j, static_cast<unsigned int>(seen.size()));
     });
     // Under a frozen threshold s the residual jumps where a point opens (its
     // traction s P_B and its Λ row switch off while s stays): a point that

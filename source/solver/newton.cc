@@ -1,14 +1,16 @@
 // The Newton iteration of a load step (doc/formulation.md, "Stopping
 // criteria", "Adaptive stopping"): the loop, the tangent predictor, the
-// measure of an iterate, the linear solve of the Newton system and what is
-// done when it is singular. The line search that moves the iterate along an
-// update is in newton_line_search.cc.
+// measure of an iterate, the linear solve of the Newton system
+// (NewtonSolver), and the view of the problem it reads. What is done when the
+// system is singular is in newton_singular_system.cc, the line search that
+// moves the iterate along an update in newton_line_search.cc.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/newton_solver.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 
@@ -80,24 +82,23 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
-  std::vector<unsigned char>
-  ContactProblem<dim>::point_statuses()
+  NewtonSolver<dim>::NewtonSolver(const View &problem)
+      : problem(problem)
   {
-    return conditions->statuses();
   }
 
   template <int dim>
   bool
-  ContactProblem<dim>::newton_loop(StepStatistics    &stats,
-                                   const unsigned int k,
-                                   const unsigned int j,
-                                   const unsigned int i)
+  NewtonSolver<dim>::solve(StepStatistics    &stats,
+                           const unsigned int k,
+                           const unsigned int j,
+                           const unsigned int i)
   {
     // the open/stick/slip statuses of the iterates, when Newton decides them
-    NewtonProgress progress(loops.linearised(Loop::status));
+    Progress progress(problem.loops.linearised(Loop::status));
     // No Newton loop of this attempt has converged yet (a loop that fails
     // fails the attempt): this is the step's first Newton solve.
-    if (stats.inner_loops.empty() && dirichlet_increment_nonzero)
+    if (stats.inner_loops.empty() && problem.dirichlet_increment_nonzero)
       {
         if (!predictor_step(stats, progress))
           return false;
@@ -107,10 +108,10 @@ namespace StabilizedLagrangian
       // loops hand over; afterwards the residual at each new iterate comes
       // from the line search, and the Jacobian is assembled only when another
       // solve follows.
-      assemble_newton_system(true);
+      problem.assemble(true);
     for (;;)
       {
-        NewtonMeasure measured;
+        Measure measured;
         if (!measure_iterate(progress, measured))
           return false;
         const bool converged = measured.measure <= measured.tolerance;
@@ -127,26 +128,26 @@ namespace StabilizedLagrangian
         TrilinosWrappers::MPI::Vector update;
         if (!newton_direction(stats, progress, measured, update))
           return false;
-        advance(progress, update, measured.residual, solver_parameters.line_search_steps);
+        advance(progress, update, measured.residual, problem.parameters.line_search_steps);
       }
   }
 
   template <int dim>
   bool
-  ContactProblem<dim>::predictor_step(StepStatistics &stats, NewtonProgress &progress)
+  NewtonSolver<dim>::predictor_step(StepStatistics &stats, Progress &progress)
   {
     // K Δū is added to the residual of this assembly alone
-    dirichlet_predictor = true;
-    assemble_newton_system(true);
-    dirichlet_predictor = false;
-    NewtonMeasure                 measured;
+    problem.dirichlet_predictor = true;
+    problem.assemble(true);
+    problem.dirichlet_predictor = false;
+    Measure                       measured;
     TrilinosWrappers::MPI::Vector update;
     if (!measure_iterate(progress, measured) ||
         !newton_direction(stats, progress, measured, update))
       return false;
     // the Dirichlet increment (zero in the update's constrained rows)
-    TrilinosWrappers::MPI::Vector increment(locally_owned, mpi_communicator);
-    increment = dirichlet_increment;
+    TrilinosWrappers::MPI::Vector increment(problem.locally_owned, problem.communicator);
+    increment = problem.dirichlet_increment;
     update += increment;
     // the predictor step is taken whole: it carries the boundary data
     advance(progress, update, measured.residual, 0);
@@ -155,30 +156,30 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::measure_iterate(NewtonProgress &progress, NewtonMeasure &measured)
+  NewtonSolver<dim>::measure_iterate(Progress &progress, Measure &measured) const
   {
-    if (!inadmissible_state.empty())
+    if (!problem.inadmissible_state.empty())
       {
-        pcout << "  Newton: " << inadmissible_state << "\n";
+        problem.pcout << "  Newton: " << problem.inadmissible_state << "\n";
         return false;
       }
-    measured.residual = residual_norm();
+    measured.residual = problem.residual_norm();
     if (!std::isfinite(measured.residual))
       {
-        pcout << "  Newton: the residual is not finite\n";
+        problem.pcout << "  Newton: the residual is not finite\n";
         return false;
       }
-    measured.scaled  = scaled_residual().largest();
-    measured.measure = solver_parameters.newton_criterion == Parameters::ResidualCriterion::scaled
+    measured.scaled  = problem.scaled_residual().largest();
+    measured.measure = problem.parameters.newton_criterion == Parameters::ResidualCriterion::scaled
                            ? measured.scaled
                            : measured.residual;
     if (progress.iteration == 0)
       progress.first_measure = measured.measure;
-    if (output_parameters.log_newton)
+    if (problem.log_newton)
       log_iterate(progress.iteration);
     measured.tolerance =
-        solver_parameters.newton_tolerance *
-        (solver_parameters.newton_criterion == Parameters::ResidualCriterion::relative
+        problem.parameters.newton_tolerance *
+        (problem.parameters.newton_criterion == Parameters::ResidualCriterion::relative
              ? progress.first_measure
              : 1.);
     return true;
@@ -186,10 +187,10 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::newton_direction(const StepStatistics          &stats,
-                                        NewtonProgress                &progress,
-                                        const NewtonMeasure           &measured,
-                                        TrilinosWrappers::MPI::Vector &update)
+  NewtonSolver<dim>::newton_direction(const StepStatistics          &stats,
+                                      Progress                      &progress,
+                                      const Measure                 &measured,
+                                      TrilinosWrappers::MPI::Vector &update)
   {
     if (measured.measure > 0.)
       progress.needed_reduction = measured.tolerance / measured.measure;
@@ -198,36 +199,37 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::may_iterate(const StepStatistics &stats,
-                                   const NewtonProgress &progress,
-                                   const NewtonMeasure  &measured)
+  NewtonSolver<dim>::may_iterate(const StepStatistics &stats,
+                                 const Progress       &progress,
+                                 const Measure        &measured)
   {
     const unsigned int iteration = progress.iteration;
-    if (iteration == solver_parameters.newton_max_iterations)
+    if (iteration == problem.parameters.newton_max_iterations)
       {
-        pcout << "  Newton: residual " << measured.residual << ' ' << force_unit(false) << " ("
-              << measured.measure << " against the criterion's tolerance " << measured.tolerance
-              << ") after " << iteration
-              << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
+        problem.pcout << "  Newton: residual " << measured.residual << ' ' << problem.force_unit
+                      << " (" << measured.measure << " against the criterion's tolerance "
+                      << measured.tolerance << ") after " << iteration
+                      << " iterations (Nonlinear solver/Newton/Maximum iterations)\n";
         return false;
       }
-    if (stats.newton_iterations + iteration >= solver_parameters.max_newton_per_step)
+    if (stats.newton_iterations + iteration >= problem.parameters.max_newton_per_step)
       {
-        pcout << "  Newton: " << stats.newton_iterations + iteration
-              << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
-                 "per load step)\n";
+        problem.pcout
+            << "  Newton: " << stats.newton_iterations + iteration
+            << " iterations in this load step (Nonlinear solver/Maximum Newton iterations "
+               "per load step)\n";
         return false;
       }
     // nothing in contact and a rigid motion free: the system is singular,
     // and no smaller load step makes it less so
-    if (!free_rigid_motions.empty() && points_in_contact() == 0)
+    if (!problem.free_rigid_motions.empty() && problem.points_in_contact() == 0)
       {
-        unrecoverable_failure =
+        problem.unrecoverable_failure =
             "the body is not supported: no contact point is in contact (the loads pull it off "
             "the obstacle) and the Dirichlet conditions leave " +
-            free_rigid_motions +
+            problem.free_rigid_motions +
             " free. Hold it by a prescribed displacement, or load it towards the obstacle";
-        pcout << "  Newton: " << unrecoverable_failure << ".\n";
+        problem.pcout << "  Newton: " << problem.unrecoverable_failure << ".\n";
         return false;
       }
     return true;
@@ -235,73 +237,72 @@ namespace StabilizedLagrangian
 
   template <int dim>
   bool
-  ContactProblem<dim>::solve_for_update(NewtonProgress                &progress,
-                                        TrilinosWrappers::MPI::Vector &update)
+  NewtonSolver<dim>::solve_for_update(Progress &progress, TrilinosWrappers::MPI::Vector &update)
   {
     if (progress.newton_decides_statuses)
-      progress.watch.seen.push_back(point_statuses());
+      progress.watch.seen.push_back(problem.conditions->statuses());
     if (!progress.jacobian_current)
-      assemble_newton_system(true);
-    update.reinit(locally_owned, mpi_communicator);
-    system_rhs *= -1.;
+      problem.assemble(true);
+    update.reinit(problem.locally_owned, problem.communicator);
+    problem.system_rhs *= -1.;
     bool solved = false;
     {
-      TimerOutput::Scope scope(timer, "linear solve");
-      if (iterative_solver)
+      TimerOutput::Scope scope(problem.timer, "linear solve");
+      if (problem.iterative_solver)
         {
           // a tenth of the reduction that meets the Newton tolerance now, or
           // Eisenstat–Walker's forcing term
-          const double maximum = linear_solver_parameters.maximum_forcing_term;
+          const double maximum = problem.linear_solver_parameters.maximum_forcing_term;
           double       forcing = 0.1 * progress.needed_reduction;
-          if (linear_solver_parameters.eisenstat_walker)
-            forcing = eisenstat_walker_forcing(residual_norm(),
+          if (problem.linear_solver_parameters.eisenstat_walker)
+            forcing = eisenstat_walker_forcing(problem.residual_norm(),
                                                progress.previous_residual,
                                                progress.forcing_term,
                                                progress.iteration == 0,
                                                maximum);
           forcing               = std::clamp(forcing, 1e-10, maximum);
           progress.forcing_term = forcing;
-          solved                = solve_by_gmres(*iterative_solver,
-                                  system_matrix,
+          solved                = solve_by_gmres(*problem.iterative_solver,
+                                  problem.system_matrix,
                                   update,
-                                  system_rhs,
-                                  residual_scaling,
+                                  problem.system_rhs,
+                                  problem.residual_scaling,
                                   forcing,
-                                  work,
-                                  pcout);
+                                  problem.work,
+                                  problem.pcout);
         }
       if (!solved)
-        solved = direct_solver->solve(system_matrix, update, system_rhs);
+        solved = problem.direct_solver->solve(problem.system_matrix, update, problem.system_rhs);
     }
-    ++work.newton_iterations;
-    if (!direct_solver->last_retry().empty())
-      pcout << "  Newton: " << direct_solver->last_retry() << "\n";
+    ++problem.work.newton_iterations;
+    if (!problem.direct_solver->last_retry().empty())
+      problem.pcout << "  Newton: " << problem.direct_solver->last_retry() << "\n";
     if (!solved)
       {
-        const std::string &error = direct_solver->last_error();
-        pcout << "  Newton: the linear solver failed: " << error << ".\n";
+        const std::string &error = problem.direct_solver->last_error();
+        problem.pcout << "  Newton: the linear solver failed: " << error << ".\n";
         // a smaller load step has the same matrix size and structure
         if (error.find("memory") != std::string::npos ||
             error.find("work space") != std::string::npos)
-          unrecoverable_failure = "the linear solver failed: " + error;
+          problem.unrecoverable_failure = "the linear solver failed: " + error;
         if (error.find("singular") == std::string::npos)
           return false;
       }
     std::string singular = "the linear solver found the matrix singular";
     if (solved)
       {
-        newton_constraints.distribute(update);
-        singular =
-            bounds.implausible(update, locally_owned_u, "the Newton update", mpi_communicator);
+        problem.newton_constraints.distribute(update);
+        singular = problem.bounds.implausible(
+            update, problem.locally_owned_u, "the Newton update", problem.communicator);
       }
     if (!singular.empty())
       {
         if (start_holding_contact())
           {
-            assemble_newton_system(true);
-            const bool repeated                = solve_for_update(progress, update);
-            contact_start.provisional_pressure = 0.;
-            contact_start.approach_gap         = 0.;
+            problem.assemble(true);
+            const bool repeated                        = solve_for_update(progress, update);
+            problem.contact_start.provisional_pressure = 0.;
+            problem.contact_start.approach_gap         = 0.;
             return repeated;
           }
         if (!fold_friction_for_slipping_contact())
@@ -309,170 +310,43 @@ namespace StabilizedLagrangian
         return false;
       }
     // the body has been lowered by this solve: the gaps are its own now
-    contact_start.approach_gap = 0.;
-    if (solver_parameters.adaptive_stopping)
+    problem.contact_start.approach_gap = 0.;
+    if (problem.parameters.adaptive_stopping)
       progress.update_energy = displacement_energy(update);
     return true;
   }
 
   template <int dim>
   bool
-  ContactProblem<dim>::start_holding_contact()
+  NewtonSolver<dim>::plausible_converged_state() const
   {
-    // nothing touches: the contact starts at the points nearest to the partner
-    if (points_in_contact() == 0)
-      {
-        if (contact_start.approach_used)
-          return false;
-        close_nearest_points();
-        return points_in_contact() > 0;
-      }
-    // Points in contact with a zero threshold s = μ λ_n hold nothing
-    // tangentially (the step's first friction iteration is frictionless): for
-    // one solve they see the mean pressure the loads imply, total applied
-    // force over the area in contact (or 1e-6 E where the loads are
-    // prescribed displacements), so that they stick; the loops then take s
-    // from λ_n. (Conditions that keep their own thresholds, the weighted
-    // nodes' s_j, would not see those set at the points.)
-    if (contact_start.provisional_used || conditions->keeps_own_thresholds() ||
-        !any_pressure_dependent_threshold())
-      return false;
-    const ContactCensus census = contact_census();
-    if (census.without_threshold < census.in_contact || census.area <= 0.)
-      return false;
-    const double area = census.area;
-    double       load = 0.;
-    for (const auto i : locally_owned_u)
-      load += std::abs(external_force(i));
-    load                               = Utilities::MPI::sum(load, mpi_communicator);
-    contact_start.provisional_used     = true;
-    contact_start.provisional_pressure = std::max(load / area, 1e6 * negligible_pressure);
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &) {
-      if (state.in_contact)
-        state.friction_threshold =
-            friction_law_of(state).threshold(contact_start.provisional_pressure);
-    });
-    pcout << "  the points in contact hold nothing tangentially (their friction threshold mu "
-             "lambda_n is still zero): for one solve they see the pressure "
-          << contact_start.provisional_pressure << " MPa (the loads over the area in contact)\n";
-    return true;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::report_near_singular(const std::string &symptom)
-  {
-    pcout << "  Newton: " << symptom << ": the Newton system is singular or nearly so.";
-    // points in contact whose friction threshold is still zero hold nothing
-    // tangentially: the first friction iteration of a step is frictionless
-    const ContactCensus census = contact_census();
-    if (census.without_threshold > 0)
-      pcout << " " << census.without_threshold
-            << " contact points in contact have a zero friction threshold (s = mu lambda_n with "
-               "lambda_n not yet known: the step's first friction iteration is frictionless), "
-               "so friction holds nothing tangentially there: a body held sideways only by "
-               "friction needs another support along the contact in its first load step (a "
-               "soft Spring, or a prescribed displacement).";
-    if (!free_rigid_motions.empty())
-      pcout << " The supports leave " << free_rigid_motions
-            << " free, which only the contact can hold; " << census.in_contact
-            << " contact points are in contact at this iterate (a contact that has not started, "
-               "or that the loads open, holds nothing).";
-    // a slipping point's traction is μ λ_n along the slip, whatever the
-    // motion along the contact: if all slip, nothing holds that motion
-    if (census.in_contact > 0 && census.slipping == census.in_contact &&
-        census.without_threshold < census.in_contact)
-      pcout << " Every point in contact slips, so friction holds no motion along the contact: "
-               "where the supports leave such a motion free, the tangential loads exceed what "
-               "friction can hold (the friction coefficient times the normal force) and no "
-               "quasi-static equilibrium exists; lower the tangential load or hold the body "
-               "along the contact.";
-    pcout << " Usual causes: a rigid-body motion the boundary conditions leave free (a rigid "
-             "plate or a body held only by a frictionless contact, pushed along the contact); "
-             "a sticking contact point whose tangential displacement is prescribed (a Dirichlet "
-             "condition on a node of the contact boundary, with friction: its friction "
-             "multiplier is then undetermined, and `Linear solver/Null pivot detection = true` "
-             "picks one of the equivalent values); a pair that violates the inf-sup condition "
-             "(Q1/P2).\n";
-  }
-
-  template <int dim>
-  typename ContactProblem<dim>::ContactCensus
-  ContactProblem<dim>::contact_census()
-  {
-    ContactCensus census;
-    const bool    friction = any_friction();
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
-      if (!state.in_contact)
-        return;
-      ++census.in_contact;
-      census.area += k.JxW;
-      census.without_threshold += friction && state.friction_threshold <= 0.;
-      census.slipping += point_response(state, k).status() == Contact::Status::slip;
-    });
-    census.in_contact        = Utilities::MPI::sum(census.in_contact, mpi_communicator);
-    census.slipping          = Utilities::MPI::sum(census.slipping, mpi_communicator);
-    census.without_threshold = Utilities::MPI::sum(census.without_threshold, mpi_communicator);
-    census.area              = Utilities::MPI::sum(census.area, mpi_communicator);
-    return census;
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::fold_friction_for_slipping_contact()
-  {
-    // Seed §2.2's friction loop solves a Tresca problem per iteration: with
-    // thresholds s too small for the tangential loads (s = μ λ_n of an
-    // earlier iterate, or the provisional pressure over an area the loads
-    // since reduced) every point slips and, in 2D or under a slip direction
-    // shared by all points, nothing resists the motion along the contact.
-    // Coulomb's s = μ λ_n grows with the pressure that the same loads
-    // produce: the generalized Newton, which linearises it (seed §2.3), finds
-    // the stick zone the fixed s cannot.
-    if (contact_start.friction_folded || loops.linearised(Loop::friction) ||
-        !any_pressure_dependent_threshold())
-      return false;
-    const ContactCensus census = contact_census();
-    if (census.in_contact == 0 || census.slipping < census.in_contact)
-      return false;
-    contact_start.fold_friction = true;
-    pcout << "  friction loop: every one of the " << census.in_contact
-          << " points in contact slips under this iteration's fixed friction thresholds and the "
-             "Newton system is singular (nothing holds the motion along the contact); the "
-             "step is repeated with the friction threshold folded into the generalized Newton\n";
-    return true;
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::plausible_converged_state() const
-  {
-    const std::string implausible =
-        bounds.implausible(solution, locally_owned_u, "the converged state", mpi_communicator);
+    const std::string implausible = problem.bounds.implausible(
+        problem.solution, problem.locally_owned_u, "the converged state", problem.communicator);
     if (!implausible.empty())
-      pcout << "  " << implausible << ": the loops converged to a state no quasi-static load "
-            << "step reaches, which is not accepted\n";
+      problem.pcout << "  " << implausible
+                    << ": the loops converged to a state no quasi-static load "
+                    << "step reaches, which is not accepted\n";
     return implausible.empty();
   }
 
   template <int dim>
   double
-  ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &update) const
+  NewtonSolver<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &update) const
   {
     // (δuᵀ K δu)^½ with the multiplier rows of δ left out: the tangent's
     // energy of the displacement part (the matrix of the last solve)
-    TrilinosWrappers::MPI::Vector displacement(locally_owned, mpi_communicator);
-    TrilinosWrappers::MPI::Vector product(locally_owned, mpi_communicator);
-    for (const auto index : locally_owned_u)
+    TrilinosWrappers::MPI::Vector displacement(problem.locally_owned, problem.communicator);
+    TrilinosWrappers::MPI::Vector product(problem.locally_owned, problem.communicator);
+    for (const auto index : problem.locally_owned_u)
       displacement(index) = update(index);
     displacement.compress(VectorOperation::insert);
-    system_matrix.vmult(product, displacement);
+    problem.system_matrix.vmult(product, displacement);
     return std::sqrt(std::abs(displacement * product));
   }
 
   template <int dim>
   bool
-  ContactProblem<dim>::adaptive_stop(NewtonProgress &progress, const double scaled_residual)
+  NewtonSolver<dim>::adaptive_stop(Progress &progress, const double scaled_residual)
   {
     // Adaptive stopping (doc/formulation.md, "Adaptive stopping"; Ern and
     // Vohralik, SISC 35, 2013): the last update bounds the linearisation
@@ -486,74 +360,117 @@ namespace StabilizedLagrangian
     // made per Newton loop and reused to stop, the J2 patin's outer loops
     // cycled (1445 Newton iterations against 124; doc/formulation.md,
     // "Adaptive stopping").
-    if (!solver_parameters.adaptive_stopping || progress.iteration == 0 ||
+    if (!problem.parameters.adaptive_stopping || progress.iteration == 0 ||
         !std::isfinite(progress.update_energy) ||
         !below_discretisation_error(progress.update_energy, scaled_residual))
       return false;
-    if (output_parameters.log_newton)
-      pcout << "    Newton stops adaptively: last update " << progress.update_energy
-            << " sqrt(N mm), scaled residual " << scaled_residual
-            << ", estimated discretisation error " << last_estimate.error
-            << " sqrt(N mm), relative " << last_estimate.relative() << "\n";
+    if (problem.log_newton)
+      problem.pcout << "    Newton stops adaptively: last update " << progress.update_energy
+                    << " sqrt(N mm), scaled residual " << scaled_residual
+                    << ", estimated discretisation error " << estimate.error
+                    << " sqrt(N mm), relative " << estimate.relative() << "\n";
     return true;
   }
 
   template <int dim>
   bool
-  ContactProblem<dim>::below_discretisation_error(const double change_energy,
-                                                  const double relative_change)
+  NewtonSolver<dim>::below_discretisation_error(const double change_energy,
+                                                const double relative_change)
   {
     // No estimate is made while the change is above twice what the last
     // estimate (of any loop, on this mesh or an earlier one) allows: the
     // estimate moves far less than the changes. Where it grew since, a check
     // that might have stopped is skipped: fewer early stops, never a wrong one.
-    const double fraction = solver_parameters.adaptive_fraction;
-    if (last_estimate.error > 0. && (change_energy > 2. * fraction * last_estimate.error ||
-                                     relative_change > 2. * fraction * last_estimate.relative()))
+    const double fraction = problem.parameters.adaptive_fraction;
+    if (estimate.error > 0. && (change_energy > 2. * fraction * estimate.error ||
+                                relative_change > 2. * fraction * estimate.relative()))
       return false;
-    last_estimate = estimated_energy_error();
-    return change_energy <= fraction * last_estimate.error &&
-           relative_change <= fraction * last_estimate.relative();
+    estimate = problem.estimated_energy_error();
+    return change_energy <= fraction * estimate.error &&
+           relative_change <= fraction * estimate.relative();
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::log_iterate(const unsigned int iteration) const
+  NewtonSolver<dim>::log_iterate(const unsigned int iteration) const
   {
-    const ScaledResidual scaled = scaled_residual();
+    const ScaledResidual scaled = problem.scaled_residual();
     std::ostringstream   line;
-    line << std::setprecision(6) << "    Newton " << iteration << ": residual " << residual_norm()
-         << ' ' << force_unit(false) << "; scaled: force " << scaled.force << ", gap " << scaled.gap
-         << ", slip " << scaled.slip << "\n";
-    pcout << line.str();
+    line << std::setprecision(6) << "    Newton " << iteration << ": residual "
+         << problem.residual_norm() << ' ' << problem.force_unit << "; scaled: force "
+         << scaled.force << ", gap " << scaled.gap << ", slip " << scaled.slip << "\n";
+    problem.pcout << line.str();
   }
 
-  // Explicit instantiation of the members defined in this file (the class
-  // itself is instantiated once, in contact_problem.cc).
+  template <int dim>
+  typename NewtonSolver<dim>::View
+  ContactProblem<dim>::newton_view()
+  {
+    return typename NewtonSolver<dim>::View{
+        solver_parameters,
+        linear_solver_parameters,
+        output_parameters.log_newton,
+        mpi_communicator,
+        pcout,
+        timer,
+        force_unit(false),
+        locally_owned,
+        locally_owned_u,
+        newton_constraints,
+        system_matrix,
+        residual_scaling,
+        external_force,
+        dirichlet_increment,
+        dirichlet_increment_nonzero,
+        inadmissible_state,
+        direct_solver,
+        iterative_solver,
+        bounds,
+        free_rigid_motions,
+        negligible_pressure,
+        loops,
+        conditions,
+        *this,
+        solution,
+        system_rhs,
+        dirichlet_predictor,
+        contact_start,
+        unrecoverable_failure,
+        work,
+        [this](const bool with_matrix) { assemble_newton_system(with_matrix); },
+        [this]() { return residual_norm(); },
+        [this]() { return scaled_residual(); },
+        [this]() { update_ghosts(); },
+        [this]() { return estimated_energy_error(); },
+        [this]() { return points_in_contact(); },
+        [this]() { close_nearest_points(); },
+        [this]() { return any_friction(); },
+        [this]() { return any_pressure_dependent_threshold(); },
+        [this](const typename NewtonSolver<dim>::PointVisitor &f) { for_each_contact_point(f); },
+        [this](const std::vector<std::vector<unsigned char>> &seen,
+               const std::vector<unsigned char>              &statuses,
+               const unsigned int end) { return first_equal(seen, statuses, end); }};
+  }
+
+  // Explicit instantiation of the members defined in this file.
 #define SL_INSTANTIATE(dim)                                                                       \
-  template std::vector<unsigned char> ContactProblem<dim>::point_statuses();                      \
-  template bool                       ContactProblem<dim>::newton_loop(                           \
-      StepStatistics &, unsigned int, unsigned int, unsigned int);          \
-  template bool   ContactProblem<dim>::predictor_step(StepStatistics &, NewtonProgress &);        \
-  template bool   ContactProblem<dim>::measure_iterate(NewtonProgress &, NewtonMeasure &);        \
-  template bool   ContactProblem<dim>::adaptive_stop(NewtonProgress &, double);                   \
-  template bool   ContactProblem<dim>::below_discretisation_error(double, double);                \
-  template double ContactProblem<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &) \
+  template NewtonSolver<dim>::NewtonSolver(const View &);                                         \
+  template bool NewtonSolver<dim>::solve(                                                         \
+      StepStatistics &, unsigned int, unsigned int, unsigned int);                                \
+  template bool   NewtonSolver<dim>::predictor_step(StepStatistics &, Progress &);                \
+  template bool   NewtonSolver<dim>::measure_iterate(Progress &, Measure &) const;                \
+  template bool   NewtonSolver<dim>::adaptive_stop(Progress &, double);                           \
+  template bool   NewtonSolver<dim>::below_discretisation_error(double, double);                  \
+  template double NewtonSolver<dim>::displacement_energy(const TrilinosWrappers::MPI::Vector &)   \
       const;                                                                                      \
-  template bool ContactProblem<dim>::newton_direction(const StepStatistics &,                     \
-                                                      NewtonProgress &,                           \
-                                                      const NewtonMeasure &,                      \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template bool ContactProblem<dim>::may_iterate(                                                 \
-      const StepStatistics &, const NewtonProgress &, const NewtonMeasure &);                     \
-  template bool ContactProblem<dim>::solve_for_update(NewtonProgress &,                           \
-                                                      TrilinosWrappers::MPI::Vector &);           \
-  template bool ContactProblem<dim>::start_holding_contact();                                     \
-  template typename ContactProblem<dim>::ContactCensus ContactProblem<dim>::contact_census();     \
-  template bool ContactProblem<dim>::fold_friction_for_slipping_contact();                        \
-  template void ContactProblem<dim>::report_near_singular(const std::string &);                   \
-  template bool ContactProblem<dim>::plausible_converged_state() const;                           \
-  template void ContactProblem<dim>::log_iterate(unsigned int) const;
+  template bool NewtonSolver<dim>::newton_direction(                                              \
+      const StepStatistics &, Progress &, const Measure &, TrilinosWrappers::MPI::Vector &);      \
+  template bool NewtonSolver<dim>::may_iterate(                                                   \
+      const StepStatistics &, const Progress &, const Measure &);                                 \
+  template bool NewtonSolver<dim>::solve_for_update(Progress &, TrilinosWrappers::MPI::Vector &); \
+  template bool NewtonSolver<dim>::plausible_converged_state() const;                             \
+  template void NewtonSolver<dim>::log_iterate(unsigned int) const;                               \
+  template typename NewtonSolver<dim>::View ContactProblem<dim>::newton_view();
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

@@ -4,7 +4,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/newton_solver.h>
 
 #include <iomanip>
 #include <sstream>
@@ -13,7 +13,7 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   bool
-  ContactProblem<dim>::ActiveSetWatch::settling(ContactProblem<dim> &problem)
+  NewtonSolver<dim>::settling(ActiveSetWatch &watch) const
   {
     // Frictionless contact (no point sticks), the contact statuses of a full
     // step are new (no iterate of this Newton loop had them, so the step does
@@ -25,29 +25,29 @@ namespace StabilizedLagrangian
     // backtracking.
     const auto                        stick    = static_cast<unsigned char>(Contact::Status::stick);
     const auto                        open     = static_cast<unsigned char>(Contact::Status::open);
-    const std::vector<unsigned char>  statuses = problem.point_statuses();
-    const std::vector<unsigned char> &current  = seen.back();
+    const std::vector<unsigned char>  statuses = problem.conditions->statuses();
+    const std::vector<unsigned char> &current  = watch.seen.back();
     unsigned int                      changes = 0, sticking = 0;
     for (unsigned int p = 0; p < statuses.size(); ++p)
       {
         changes += (statuses[p] == open) != (current[p] == open);
         sticking += statuses[p] == stick || current[p] == stick;
       }
-    changes  = Utilities::MPI::sum(changes, problem.mpi_communicator);
-    sticking = Utilities::MPI::sum(sticking, problem.mpi_communicator);
-    if (sticking > 0 || changes == 0 || changes > last_changes ||
-        problem.first_equal(seen, statuses, seen.size()) < seen.size())
+    changes  = Utilities::MPI::sum(changes, problem.communicator);
+    sticking = Utilities::MPI::sum(sticking, problem.communicator);
+    if (sticking > 0 || changes == 0 || changes > watch.last_changes ||
+        problem.first_equal(watch.seen, statuses, watch.seen.size()) < watch.seen.size())
       return false;
-    last_changes = changes;
+    watch.last_changes = changes;
     return true;
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::advance(NewtonProgress                      &progress,
-                               const TrilinosWrappers::MPI::Vector &update,
-                               const double                         residual,
-                               const unsigned int                   max_halvings)
+  NewtonSolver<dim>::advance(Progress                            &progress,
+                             const TrilinosWrappers::MPI::Vector &update,
+                             const double                         residual,
+                             const unsigned int                   max_halvings)
   {
     line_search(
         update, residual, progress.previous_residual, max_halvings, progress.active_set_watch());
@@ -58,11 +58,11 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
-                                   const double                         residual,
-                                   const double                         previous_residual,
-                                   const unsigned int                   max_halvings,
-                                   ActiveSetWatch                      *watch)
+  NewtonSolver<dim>::line_search(const TrilinosWrappers::MPI::Vector &update,
+                                 const double                         residual,
+                                 const double                         previous_residual,
+                                 const unsigned int                   max_halvings,
+                                 ActiveSetWatch                      *watch)
   {
     // Non-monotone backtracking. With frozen statuses the residual is only
     // piecewise smooth (stick/slip in P_B, elastic/plastic switches at the
@@ -77,25 +77,25 @@ namespace StabilizedLagrangian
     // Stadler & Wohlmuth 2008), whose residual rises while the active set is
     // being found (the iterate solves the equations of a set that is not yet
     // the right one). That step is taken whole while the active set settles
-    // (ActiveSetWatch::settling).
-    const TrilinosWrappers::MPI::Vector start = solution;
+    // (settling()).
+    const TrilinosWrappers::MPI::Vector start = problem.solution;
     double                              step  = 1.;
     for (unsigned int halving = 0;; ++halving)
       {
-        solution = start;
-        solution.add(step, update);
-        update_ghosts();
-        assemble_newton_system(false);
-        if (output_parameters.log_newton)
+        problem.solution = start;
+        problem.solution.add(step, update);
+        problem.update_ghosts();
+        problem.assemble(false);
+        if (problem.log_newton)
           log_trial(step);
         if (halving == max_halvings)
           return;
-        if (inadmissible_state.empty())
+        if (problem.inadmissible_state.empty())
           {
-            if (halving == 0 && watch != nullptr && watch->settling(*this))
+            if (halving == 0 && watch != nullptr && settling(*watch))
               return;
             const double reference = halving == 0 ? previous_residual : residual;
-            if (residual_norm() < (1. - 1e-4 * step) * reference)
+            if (problem.residual_norm() < (1. - 1e-4 * step) * reference)
               return;
           }
         step /= 2.;
@@ -104,28 +104,29 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::log_trial(const double step)
+  NewtonSolver<dim>::log_trial(const double step) const
   {
     unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
-    for (const unsigned char status : point_statuses())
+    for (const unsigned char status : problem.conditions->statuses())
       ++counts[status];
     std::ostringstream line;
-    line << std::setprecision(6) << "      step length " << step << ": residual " << residual_norm()
-         << (inadmissible_state.empty() ? "" : " (inadmissible material state)")
-         << ", open/stick/slip " << Utilities::MPI::sum(counts[0], mpi_communicator) << "/"
-         << Utilities::MPI::sum(counts[1], mpi_communicator) << "/"
-         << Utilities::MPI::sum(counts[2], mpi_communicator) << "\n";
-    pcout << line.str();
+    line << std::setprecision(6) << "      step length " << step << ": residual "
+         << problem.residual_norm()
+         << (problem.inadmissible_state.empty() ? "" : " (inadmissible material state)")
+         << ", open/stick/slip " << Utilities::MPI::sum(counts[0], problem.communicator) << "/"
+         << Utilities::MPI::sum(counts[1], problem.communicator) << "/"
+         << Utilities::MPI::sum(counts[2], problem.communicator) << "\n";
+    problem.pcout << line.str();
   }
 
-  // Explicit instantiation of the members defined in this file (the class
-  // itself is instantiated once, in contact_problem.cc).
+  // Explicit instantiation of the members defined in this file.
 #define SL_INSTANTIATE(dim)                                                                   \
-  template void ContactProblem<dim>::advance(                                                 \
-      NewtonProgress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);         \
-  template void ContactProblem<dim>::line_search(                                             \
+  template void NewtonSolver<dim>::advance(                                                   \
+      Progress &, const TrilinosWrappers::MPI::Vector &, double, unsigned int);               \
+  template void NewtonSolver<dim>::line_search(                                               \
       const TrilinosWrappers::MPI::Vector &, double, double, unsigned int, ActiveSetWatch *); \
-  template void ContactProblem<dim>::log_trial(double);
+  template bool NewtonSolver<dim>::settling(ActiveSetWatch &) const;                          \
+  template void NewtonSolver<dim>::log_trial(double) const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

@@ -46,6 +46,7 @@
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
+#include <stabilized_lagrangian/solver/newton_solver.h>
 #include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
@@ -57,43 +58,6 @@
 namespace StabilizedLagrangian
 {
   using namespace dealii;
-
-  /**
-   * @brief The blocks of the Newton residual, each against its own scale
-   * (doc/formulation.md, "Newton stopping criterion"): dimensionless.
-   */
-  struct ScaledResidual
-  {
-    double force = 0.; ///< force rows against the largest nodal internal or external force
-    double gap   = 0.; ///< λ_n rows as lengths (a gap) against the largest displacement
-    double slip  = 0.; ///< Λ rows as lengths (a stick point's slip) against it
-
-    /** @brief The largest block: what the `scaled` criterion compares with the tolerance. */
-    double
-    largest() const
-    {
-      return std::max({force, gap, slip});
-    }
-  };
-
-  /**
-   * @brief Work done since the start of the run, failed attempts included:
-   * what a comparison of algorithms must count.
-   */
-  struct WorkCounters
-  {
-    unsigned long newton_iterations   = 0; ///< Newton iterations (one linear solve each)
-    unsigned long assemblies          = 0; ///< residual assemblies, with or without the Jacobian
-    unsigned long jacobians           = 0; ///< assemblies with the Jacobian
-    unsigned long krylov_iterations   = 0; ///< GMRES iterations (Linear solver/Method = iterative)
-    unsigned long iterative_fallbacks = 0; ///< systems GMRES left to the direct solver
-    /** wall time (s, this rank) of the iterative solver's phases
-     * (LinearSolvers::BlockIterativeSolver::PhaseTimes) */
-    double amg_setup_seconds   = 0.;
-    double schur_seconds       = 0.;
-    double krylov_seconds      = 0.;
-    double schur_solve_seconds = 0.;
-  };
 
   /**
    * @brief Quasi-static frictional contact of a deformable body with a rigid
@@ -109,14 +73,15 @@ namespace StabilizedLagrangian
    * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, run_summary.cc the run's summary,
-   * nested_loops.cc the loops of seed §2.2, newton.cc the Newton iteration,
-   * newton_line_search.cc its line search, converged_step.cc what an accepted
+   * nested_loops.cc the loops of seed §2.2, newton.cc the view the Newton
+   * iteration reads, converged_step.cc what an accepted
    * step commits, refinement.cc adaptive refinement, run_state_list.cc the
    * run's state (what a step cut restores and a checkpoint keeps),
-   * checkpoint.cc checkpoints; the output files are written by
-   * SolutionOutput (postprocessing/solution_output.h), the scene is checked
-   * by SceneChecks (solver/scene_checks.h), the pair by InfSupTest
-   * (solver/inf_sup_test.h).
+   * checkpoint.cc checkpoints. The Newton iteration is NewtonSolver's
+   * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
+   * newton_line_search.cc); the output files are written by SolutionOutput
+   * (postprocessing/solution_output.h), the scene is checked by SceneChecks
+   * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -442,18 +407,8 @@ namespace StabilizedLagrangian
                       const double        wall_time,
                       const WorkCounters &path_work) const;
 
-    /** The energy estimate η and the solution's energy norm, at an iterate. */
-    struct EnergyEstimate
-    {
-      double error       = 0.; ///< η, √(N mm)
-      double energy_norm = 0.; ///< (∫ P:∇u)^½, √(N mm)
-      /** η against the energy norm (0 for an undeformed body) */
-      double
-      relative() const
-      {
-        return energy_norm > 0. ? error / energy_norm : 0.;
-      }
-    };
+    /** The energy estimate η and the solution's energy norm, at an iterate (NewtonSolver). */
+    using EnergyEstimate = StabilizedLagrangian::EnergyEstimate;
 
     // --- nested_loops.cc: the loops of seed §2.2: geometry → friction threshold → status ---
     bool
@@ -509,186 +464,11 @@ namespace StabilizedLagrangian
                 const std::vector<unsigned char>              &statuses,
                 unsigned int                                   end) const;
 
-    // --- newton.cc: the Newton loop (nested or generalized); newton_line_search.cc: its line
-    // search ---
-    bool
-    newton_loop(StepStatistics    &stats,
-                const unsigned int geometry_iteration,
-                const unsigned int friction_iteration,
-                const unsigned int status_iteration);
-    /**
-     * The open/stick/slip statuses of a Newton loop's iterates, when Newton
-     * decides them: the line search takes a full step whole while the active
-     * set settles.
-     */
-    struct ActiveSetWatch
-    {
-      std::vector<std::vector<unsigned char>> seen;
-      unsigned int last_changes = std::numeric_limits<unsigned int>::max();
-      /** Collective: whether the statuses at the trial iterate settle the active set. */
-      bool
-      settling(ContactProblem<dim> &problem);
-    };
-    /** What a Newton loop carries from one iteration to the next. */
-    struct NewtonProgress
-    {
-      explicit NewtonProgress(const bool newton_decides_statuses)
-          : newton_decides_statuses(newton_decides_statuses)
-      {
-      }
-      /** The watch of the active set, when Newton decides the statuses. */
-      ActiveSetWatch *
-      active_set_watch()
-      {
-        return newton_decides_statuses ? &watch : nullptr;
-      }
-      unsigned int iteration     = 0;
-      double       first_measure = 0.; ///< the criterion's measure at iteration 0
-      /** the energy norm (δuᵀ K δu)^½ of the last Newton direction's displacement, √(N mm) */
-      double update_energy     = std::numeric_limits<double>::infinity();
-      double previous_residual = std::numeric_limits<double>::infinity();
-      /** the relative tolerance of the last iterative linear solve (Eisenstat–Walker) */
-      double forcing_term = 0.;
-      /** the criterion's tolerance over its measure at the iterate: the reduction still needed */
-      double needed_reduction = 1.;
-      /** whether the last assembly, at the iterate, has the Jacobian */
-      bool           jacobian_current = true;
-      const bool     newton_decides_statuses;
-      ActiveSetWatch watch;
-    };
-    /** The residual at a Newton iterate as the stopping criterion measures it. */
-    struct NewtonMeasure
-    {
-      double residual  = 0.; ///< in N
-      double scaled    = 0.; ///< the largest scaled block
-      double measure   = 0.; ///< what the criterion compares with the tolerance
-      double tolerance = 0.;
-    };
-    /**
-     * `Nonlinear solver/Stopping = adaptive`: whether the last update's energy
-     * is below the fraction of the discretisation error estimated at the
-     * iterate (newton.cc).
-     */
-    bool
-    adaptive_stop(NewtonProgress &progress, const double scaled_residual);
-    /**
-     * Adaptive stopping's test, shared by Newton and the nested loops
-     * (doc/formulation.md, "Adaptive stopping"): whether @p change_energy, the
-     * energy of a loop's last change, is below `Adaptive stopping fraction`
-     * γ of the discretisation error η estimated at the current iterate, and
-     * @p relative_change, the loop's own relative measure (its criterion's),
-     * below γ η / ‖u‖. The estimate is skipped (false) while the change is
-     * above twice what the last one (last_estimate) allows.
-     */
-    bool
-    below_discretisation_error(const double change_energy, const double relative_change);
-    /** (δuᵀ K δu)^½ of the displacement part of a Newton direction, K the last solve's matrix. */
-    double
-    displacement_energy(const TrilinosWrappers::MPI::Vector &update) const;
-    /**
-     * The tangent predictor, the first Newton iteration of a load step whose
-     * Dirichlet increment Δū is non-zero (doc/formulation.md, "Stopping
-     * criteria"): the residual linearised at u + Δū, R(u) + K Δū, is solved
-     * for, and the step, Δū included, is taken whole.
-     */
-    bool
-    predictor_step(StepStatistics &stats, NewtonProgress &progress);
-    /**
-     * The residual of the last assembly, measured (and logged); false, with
-     * the reason printed, when the iterate cannot go on.
-     */
-    bool
-    measure_iterate(NewtonProgress &progress, NewtonMeasure &measured);
-    /**
-     * The Newton update at the iterate; false, with the reason printed, at an
-     * iteration limit, an unsupported body or a failed linear solve.
-     */
-    bool
-    newton_direction(const StepStatistics          &stats,
-                     NewtonProgress                &progress,
-                     const NewtonMeasure           &measured,
-                     TrilinosWrappers::MPI::Vector &update);
-    /** Whether the Newton loop may take another iteration (its limits, a supported body). */
-    bool
-    may_iterate(const StepStatistics &stats,
-                const NewtonProgress &progress,
-                const NewtonMeasure  &measured);
-    /** Assemble the Jacobian if needed and solve the Newton system for @p update. */
-    bool
-    solve_for_update(NewtonProgress &progress, TrilinosWrappers::MPI::Vector &update);
-    /**
-     * After a singular or nearly singular Newton system: start the contact
-     * that would hold the body, if it has not started (close_nearest_points())
-     * or if its points in contact hold nothing tangentially for want of a
-     * friction threshold (a provisional pressure for one solve). True if
-     * something changed and the solve is worth repeating.
-     */
-    bool
-    start_holding_contact();
-    /**
-     * Print why a Newton system is singular or nearly so: @p symptom (what the
-     * solve gave), the rigid motions the supports leave free and the points in
-     * contact that could hold them, and the usual causes.
-     */
-    void
-    report_near_singular(const std::string &symptom);
-    /** The points in contact of the current iterate, by what they hold tangentially. */
-    struct ContactCensus
-    {
-      unsigned int in_contact        = 0;  ///< points in contact
-      unsigned int slipping          = 0;  ///< of which slip
-      unsigned int without_threshold = 0;  ///< of which have s = 0 (friction laws with friction)
-      double       area              = 0.; ///< the area in contact
-    };
-    /** Count the points of the current iterate (collective). */
-    ContactCensus
-    contact_census();
-    /**
-     * After a singular solve: if the friction loop's fixed thresholds s leave
-     * every point in contact slipping (Tresca thresholds too small for the
-     * tangential loads, so nothing holds the motion along the contact), ask
-     * for the step to be repeated with the threshold folded into the
-     * generalized Newton (contact_start.fold_friction) and return true.
-     */
-    bool
-    fold_friction_for_slipping_contact();
-    /**
-     * Whether the state the loops converged to is one a quasi-static contact
-     * problem can have (SceneBounds::implausible()): finite, no node moved
-     * far beyond the scene's extent. If not, the reason is printed and the
-     * step is failed.
-     */
-    bool
-    plausible_converged_state() const;
-    /**
-     * Move the iterate along @p update (line search with at most
-     * @p max_halvings) and count the iteration.
-     */
-    void
-    advance(NewtonProgress                      &progress,
-            const TrilinosWrappers::MPI::Vector &update,
-            const double                         residual,
-            const unsigned int                   max_halvings);
-    /**
-     * Backtracking along @p update from the current iterate (residual
-     * @p residual, the one before @p previous_residual); with @p watch, a
-     * full step that settles the active set is taken whole.
-     */
-    void
-    line_search(const TrilinosWrappers::MPI::Vector &update,
-                const double                         residual,
-                const double                         previous_residual,
-                const unsigned int                   max_halvings,
-                ActiveSetWatch                      *watch);
-    /** Print a Newton iterate: the residual in N and its scaled blocks. */
-    void
-    log_iterate(const unsigned int iteration) const;
-    /** Print a line-search trial: step length, residual, open/stick/slip counts. */
-    void
-    log_trial(const double step);
-    /** Open, stick or slip (Contact::Status) of this rank's contact points at the iterate. */
-    std::vector<unsigned char>
-    point_statuses();
+    // --- newton.cc: the Newton iteration (NewtonSolver; its line search in
+    // newton_line_search.cc, a singular system in newton_singular_system.cc) ---
+    /** What the Newton iteration reads and writes of this problem, and what it asks of it. */
+    typename NewtonSolver<dim>::View
+    newton_view();
 
     // --- checkpoint.cc: checkpoints ---
     /** Write a checkpoint of the current state (every rank), replacing the previous one. */
@@ -1402,8 +1182,6 @@ namespace StabilizedLagrangian
     bool  wall_time_limit_reached = false;
     /** why the run must stop rather than cut the load step (empty: it may cut) */
     std::string unrecoverable_failure;
-    /** `Stopping = adaptive`: the discretisation error estimated at the last check of any loop */
-    EnergyEstimate last_estimate;
 
     std::unique_ptr<Obstacles::Interface<dim>> obstacle;
     /** `Obstacle/Motion`: the rigid obstacle's translation d(t) */
@@ -1539,43 +1317,13 @@ namespace StabilizedLagrangian
     std::string free_rigid_motions;
     /** |g_n| at most this counts as touching in the status test (round-off of the coordinates) */
     double touching_gap = 0.;
-    /**
-     * How a step starts a contact that would hold a body and has not started
-     * yet (the Newton system singular without it; doc/formulation.md, "What a
-     * converged state must satisfy"); cleared when a step converges or is cut.
-     */
-    struct ContactStart
-    {
-      /**
-       * |g_n| at most this also counts as touching, for one Newton solve: set
-       * by close_nearest_points() when nothing touches (a body lowered until
-       * it touches)
-       */
-      double approach_gap = 0.;
-      /** whether this step has lowered the body onto its partner */
-      bool approach_used = false;
-      /**
-       * the pressure the friction threshold sees where λ_n is still zero, for
-       * one Newton solve: set when points in contact hold nothing
-       * tangentially because their threshold μ λ_n is zero
-       */
-      double provisional_pressure = 0.;
-      /** whether this step has used provisional_pressure */
-      bool provisional_used = false;
-      /**
-       * the friction loop's fixed thresholds left every point in contact
-       * slipping and the system singular: the attempt is repeated with the
-       * threshold folded into the generalized Newton (solve_load_step())
-       */
-      bool fold_friction = false;
-      /** whether this attempt is that repetition */
-      bool friction_folded = false;
-    } contact_start;
+    /** how a step starts a contact that would hold a body (ContactStart) */
+    ContactStart contact_start;
     /** relevant: the Dirichlet increment Δū of the load step (apply_dirichlet_values()) */
     TrilinosWrappers::MPI::Vector dirichlet_increment;
-    /** whether Δū is non-zero: the step's first Newton iteration is then predictor_step() */
+    /** whether Δū is non-zero: the step's first Newton iteration is then the predictor */
     bool dirichlet_increment_nonzero = false;
-    /** set by predictor_step() around its assembly alone: add_to_global_system() adds K Δū */
+    /** set by the predictor around its assembly alone: add_to_global_system() adds K Δū */
     bool dirichlet_predictor = false;
 
     std::vector<ContactFace>            contact_faces;
@@ -1618,5 +1366,7 @@ namespace StabilizedLagrangian
     std::vector<std::vector<CellId>> refinement_history;
     /** the run's state: what a step cut restores and a checkpoint keeps */
     RunState state_list;
+    /** the Newton iteration, called by the nested loops and the generalized Newton alike */
+    NewtonSolver<dim> newton{newton_view()};
   };
 } // namespace StabilizedLagrangian
