@@ -52,7 +52,7 @@ namespace StabilizedLagrangian
         if (cycle > 0 && !resumed)
           {
             TimerOutput::Scope scope(timer, "setup");
-            refine_mesh();
+            MeshRefinement<dim>(refinement_view()).refine();
             time = 0.;
             pcout << "Refinement cycle " << cycle << " of " << n_cycles << "\n";
           }

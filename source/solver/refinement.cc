@@ -1,27 +1,14 @@
-#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/vector.h>
 
-#include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/solution_transfer.h>
-
-#include <deal.II/dofs/dof_tools.h>
-
 #include <deal.II/fe/fe_values.h>
-
-#include <deal.II/numerics/error_estimator.h>
-#include <deal.II/numerics/vector_tools.h>
-#include <deal.II/numerics/rtree.h>
 
 #include <stabilized_lagrangian/contact/friction_law_check.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
-
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <iomanip>
@@ -123,102 +110,25 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  void
-  ContactProblem<dim>::mark_for_refinement(const Vector<float> &indicators)
+  typename MeshRefinement<dim>::View
+  ContactProblem<dim>::refinement_view()
   {
-    // adaptive refinement is refused on simplex meshes (check_cell_shape): the mesh is p4est's
-    auto &p4est_mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
-    if (adaptive_refinement.bulk_marking)
-      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
-          p4est_mesh, indicators, adaptive_refinement.fraction, 0., VectorTools::L2_norm);
-    else
-      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-          p4est_mesh, indicators, adaptive_refinement.fraction, 0.);
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::refine_mesh()
-  {
-    using Criterion = Parameters::AdaptiveRefinement::Criterion;
-    switch (adaptive_refinement.criterion)
-      {
-      case Criterion::active_set:
-        refine_around_active_set();
-        break;
-      case Criterion::uniform:
-        flag_every_cell();
-        break;
-      case Criterion::kelly:
-        {
-          // Kelly indicators of the displacement of the last converged state
-          const TrilinosWrappers::MPI::Vector u = ghosted_displacement();
-          Vector<float>                       indicators(triangulation.n_active_cells());
-          KellyErrorEstimator<dim>::estimate(dof_handler_u,
-                                             QGauss<dim - 1>(fe_pair->displacement_degree() + 1),
-                                             {},
-                                             u,
-                                             indicators);
-          mark_for_refinement(indicators);
-          break;
-        }
-      case Criterion::estimator:
-        // η_K of the last converged load step (estimate_error())
-        mark_for_refinement(error_indicators);
-        break;
-      }
-    // the mesh the flags make (with the smoothing's own flags), against the
-    // memory of the machine: a refinement that cannot fit is not started
-    triangulation.prepare_coarsening_and_refinement();
-    unsigned int flagged = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      flagged += cell->is_locally_owned() && cell->refine_flag_set();
-    const double cells = triangulation.n_global_active_cells();
-    const double growth =
-        (cells + Utilities::MPI::sum(flagged, mpi_communicator) * (std::pow(2., dim) - 1.)) / cells;
-    check_memory_for_growth(growth);
-    // the flags this rank set, so that a resumed run rebuilds the same mesh
-    refinement_history.emplace_back();
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->refine_flag_set())
-        refinement_history.back().push_back(cell->id());
-    // the displacements of the earlier cycles follow the mesh (`Errors against
-    // the last cycle`): the meshes are nested, so the interpolation is exact
-    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer(
-        dof_handler_u);
-    std::vector<const TrilinosWrappers::MPI::Vector *> carried;
-    for (const auto &u : earlier_cycles)
-      carried.push_back(&u);
-    if (!carried.empty())
-      transfer.prepare_for_coarsening_and_refinement(carried);
-    triangulation.execute_coarsening_and_refinement();
-    setup_after_refinement();
-    if (carried.empty())
-      return;
-    std::vector<TrilinosWrappers::MPI::Vector> owned(
-        carried.size(), TrilinosWrappers::MPI::Vector(locally_owned_u, mpi_communicator));
-    std::vector<TrilinosWrappers::MPI::Vector *> targets;
-    for (auto &u : owned)
-      targets.push_back(&u);
-    transfer.interpolate(targets);
-    AffineConstraints<double> hanging_nodes(locally_relevant_u);
-    DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_nodes);
-    hanging_nodes.close();
-    for (unsigned int k = 0; k < owned.size(); ++k)
-      {
-        hanging_nodes.distribute(owned[k]);
-        earlier_cycles[k].reinit(locally_owned_u, locally_relevant_u, mpi_communicator);
-        earlier_cycles[k] = owned[k];
-      }
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::flag_every_cell()
-  {
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        cell->set_refine_flag();
+    return typename MeshRefinement<dim>::View{triangulation,
+                                              refinement_history,
+                                              earlier_cycles,
+                                              dof_handler_u,
+                                              locally_owned_u,
+                                              locally_relevant_u,
+                                              fe_pair->displacement_degree(),
+                                              adaptive_refinement,
+                                              error_indicators,
+                                              active_set,
+                                              memory_at_start,
+                                              static_cast<bool>(iterative_solver),
+                                              mpi_communicator,
+                                              pcout,
+                                              [this]() { return ghosted_displacement(); },
+                                              [this]() { setup_after_refinement(); }};
   }
 
   template <int dim>
@@ -287,100 +197,15 @@ namespace StabilizedLagrangian
     SafeFiles::write_atomically(directory + "/cycle_errors.csv", file.str());
   }
 
-  template <int dim>
-  void
-  ContactProblem<dim>::check_memory_for_growth(const double growth) const
-  {
-    // The peak memory of this rank so far (the largest mesh yet, with its
-    // factorisation) scaled by the growth of the mesh, to the power of the
-    // direct solver's fill (about n log n in 2D, n^(4/3) in 3D; linear for the
-    // iterative solver, whose multigrid hierarchy and Krylov basis grow with
-    // the unknowns), against the physical memory shared by the ranks of this
-    // node.
-    Utilities::System::MemoryStats memory;
-    Utilities::System::get_memory_stats(memory);
-    const double fill = iterative_solver ? growth : std::pow(growth, dim == 3 ? 4. / 3. : 1.1);
-    MPI_Comm     node;
-    MPI_Comm_split_type(mpi_communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-    const unsigned int ranks_on_node = Utilities::MPI::n_mpi_processes(node);
-    MPI_Comm_free(&node);
-    const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
-                            static_cast<double>(sysconf(_SC_PAGESIZE)) / ranks_on_node;
-    // resident memory against the physical memory, and the address space
-    // against its limit where one is set (ulimit -v, a batch system's)
-    // (what the process held before the mesh existed, its libraries, does not grow)
-    const auto grown = [&](const double peak_kb, const double start_kb) {
-      return 1024. * (start_kb + std::max(peak_kb - start_kb, 0.) * fill);
-    };
-    double        ratio = grown(memory.VmHWM, memory_at_start.VmHWM) / physical;
-    struct rlimit limit;
-    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-      ratio = std::max(ratio,
-                       grown(memory.VmPeak, memory_at_start.VmPeak) /
-                           static_cast<double>(limit.rlim_cur));
-    const double worst = Utilities::MPI::max(ratio, mpi_communicator);
-    if (worst > 0.9)
-      throw std::runtime_error(
-          "Adaptive refinement: the next refinement cycle multiplies the cells by " +
-          std::to_string(growth) + " and would need about " +
-          std::to_string(static_cast<long>(worst * 100.)) +
-          " % of the memory each rank has (estimated from its peak so far). Stopping "
-          "before it; the results of the cycles done are kept. Use fewer `Adaptive "
-          "refinement/Cycles`, a smaller `Refined fraction`, or more machines.");
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::refine_around_active_set()
-  {
-    // every rank needs every active point: a cell may lie near another rank's
-    std::vector<Point<dim>> points;
-    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, active_set))
-      points.insert(points.end(), part.begin(), part.end());
-    if (points.empty())
-      {
-        pcout << "  no contact point was in contact: the mesh is refined globally\n";
-        flag_every_cell();
-        return;
-      }
-    // the band scales with the size of the active zone (its bounding box's
-    // diameter), so the material below the contact, where the stresses vary
-    // over that size, is refined too; the cell's radius about its centre
-    // keeps the cells that contain or touch active points. A contact that
-    // starts at a single point (a zone of size 0) sits on a vertex, exactly
-    // one radius from each cell around it: the tolerance keeps those cells.
-    const auto   box = BoundingBox<dim>(points);
-    const double zone_size =
-        box.get_boundary_points().first.distance(box.get_boundary_points().second);
-    const auto tree = pack_rtree(points);
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Point<dim> centre = cell->center();
-          double           radius = 0.;
-          for (const unsigned int v : cell->vertex_indices())
-            radius = std::max(radius, centre.distance(cell->vertex(v)));
-          std::vector<Point<dim>> nearest;
-          tree.query(boost::geometry::index::nearest(centre, 1), std::back_inserter(nearest));
-          if (centre.distance(nearest[0]) <=
-              adaptive_refinement.band * zone_size + radius * (1. + 1e-10))
-            cell->set_refine_flag();
-        }
-  }
-
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                          \
-  template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);                   \
-  template std::vector<types::boundary_id> ContactProblem<dim>::supported_boundaries() const;        \
-  template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                      \
-  template StatisticsWriter::Supports    ContactProblem<dim>::statistics_supports() const;           \
-  template TrilinosWrappers::MPI::Vector ContactProblem<dim>::ghosted_displacement() const;          \
-  template void                          ContactProblem<dim>::refine_mesh();                         \
-  template void                          ContactProblem<dim>::check_memory_for_growth(double) const; \
-  template void                          ContactProblem<dim>::refine_around_active_set();            \
-  template void                          ContactProblem<dim>::flag_every_cell();                     \
-  template void ContactProblem<dim>::mark_for_refinement(const Vector<float> &);                     \
+#define SL_INSTANTIATE(dim)                                                                      \
+  template void ContactProblem<dim>::compute_contact_statistics(StepStatistics &);               \
+  template std::vector<types::boundary_id> ContactProblem<dim>::supported_boundaries() const;    \
+  template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                  \
+  template StatisticsWriter::Supports         ContactProblem<dim>::statistics_supports() const;  \
+  template TrilinosWrappers::MPI::Vector      ContactProblem<dim>::ghosted_displacement() const; \
+  template typename MeshRefinement<dim>::View ContactProblem<dim>::refinement_view();            \
   template void ContactProblem<dim>::write_cycle_errors(const std::string &) const;
 
   SL_INSTANTIATE(2)

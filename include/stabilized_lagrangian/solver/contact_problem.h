@@ -41,15 +41,17 @@
 #include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
+#include <stabilized_lagrangian/solver/error_estimator.h>
 #include <stabilized_lagrangian/solver/inf_sup_test.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
+#include <stabilized_lagrangian/solver/mesh_refinement.h>
 #include <stabilized_lagrangian/solver/newton_solver.h>
 #include <stabilized_lagrangian/solver/run_state.h>
-#include <stabilized_lagrangian/solver/scene_checks.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
+#include <stabilized_lagrangian/solver/scene_checks.h>
 
 #include <algorithm>
 #include <functional>
@@ -74,14 +76,18 @@ namespace StabilizedLagrangian
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
    * load_path.cc the load steps, run_summary.cc the run's summary,
    * nested_loops.cc the loops of seed §2.2, newton.cc the view the Newton
-   * iteration reads, converged_step.cc what an accepted
-   * step commits, refinement.cc adaptive refinement, run_state_list.cc the
-   * run's state (what a step cut restores and a checkpoint keeps),
-   * checkpoint.cc checkpoints. The Newton iteration is NewtonSolver's
+   * iteration reads, converged_step.cc what an accepted step commits,
+   * refinement.cc the step's statistics and reactions, the adaptive
+   * refinement's view and the cycles' errors, run_state_list.cc the run's
+   * state (what a step cut restores and a checkpoint keeps), checkpoint.cc
+   * checkpoints. The Newton iteration is NewtonSolver's
    * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
    * newton_line_search.cc); the output files are written by SolutionOutput
    * (postprocessing/solution_output.h), the scene is checked by SceneChecks
-   * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h).
+   * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h),
+   * the residual error estimate is ErrorEstimator's (solver/error_estimator.h;
+   * error_estimator.cc builds its view) and the refinement of the mesh
+   * MeshRefinement's (solver/mesh_refinement.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -407,7 +413,7 @@ namespace StabilizedLagrangian
                       const double        wall_time,
                       const WorkCounters &path_work) const;
 
-    /** The energy estimate η and the solution's energy norm, at an iterate (NewtonSolver). */
+    /** The energy estimate η and the solution's energy norm, at an iterate (ErrorEstimator). */
     using EnergyEstimate = StabilizedLagrangian::EnergyEstimate;
 
     // --- nested_loops.cc: the loops of seed §2.2: geometry → friction threshold → status ---
@@ -987,7 +993,7 @@ namespace StabilizedLagrangian
                          const std::vector<types::global_dof_index> &dofs,
                          const bool                                  assemble_matrix);
 
-    // --- refinement.cc: contact statistics of a step, adaptive refinement ---
+    // --- refinement.cc: contact statistics of a step, the view of the adaptive refinement ---
     /** Forces and point counts of a converged step; records the active set. */
     void
     compute_contact_statistics(StepStatistics &stats);
@@ -1024,31 +1030,9 @@ namespace StabilizedLagrangian
     /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
     TrilinosWrappers::MPI::Vector
     ghosted_displacement() const;
-    /**
-     * Refine the mesh by the criterion of `Adaptive refinement`, set up the
-     * DoFs on the new mesh and carry earlier_cycles over to it.
-     */
-    void
-    refine_mesh();
-    /**
-     * Collective: throw when a mesh @p growth times larger would not fit in
-     * the machine's memory (estimated from the peak so far).
-     */
-    void
-    check_memory_for_growth(double growth) const;
-    /**
-     * Flag cells by @p indicators (one per active cell) as `Marking` says:
-     * the `Refined fraction` of the cells with the largest, or the fewest
-     * whose squares carry that fraction of the sum.
-     */
-    void
-    mark_for_refinement(const Vector<float> &indicators);
-    /** Flag the cells near the recorded active set for refinement. */
-    void
-    refine_around_active_set();
-    /** Flag every locally owned cell for refinement. */
-    void
-    flag_every_cell();
+    /** What a refinement of the mesh reads and writes of this problem (MeshRefinement). */
+    typename MeshRefinement<dim>::View
+    refinement_view();
     /**
      * Write cycle_errors.csv into @p directory: each earlier cycle's
      * displacement against the last one's (earlier_cycles), beside its error
@@ -1057,12 +1041,15 @@ namespace StabilizedLagrangian
     void
     write_cycle_errors(const std::string &directory) const;
 
-    // --- error_estimator.cc: the residual error estimate (doc/formulation.md, "Error estimate")
-    // ---
+    // --- error_estimator.cc: the residual error estimate (ErrorEstimator, doc/formulation.md,
+    // "Error estimate") ---
+    /** What the error estimate reads of this problem (its history of the ghost cells it writes). */
+    typename ErrorEstimator<dim>::View
+    error_estimator_view();
     /**
      * The error estimate of the converged state of a load step: η_K of every
      * locally owned cell into error_indicators, the totals (η, its contact
-     * part, the energy norm of the solution) into @p stats.
+     * part, the pressure estimate, the energy norm of the solution) into @p stats.
      */
     void
     estimate_error(StepStatistics &stats);
@@ -1072,66 +1059,6 @@ namespace StabilizedLagrangian
      */
     EnergyEstimate
     estimated_energy_error();
-    /**
-     * The residual terms of every locally owned cell: the volume, face and
-     * boundary ones into @p squared, the contact ones into @p contact
-     * (squared, N mm); returns ∫ P:∇u over the owned cells.
-     */
-    double
-    residual_indicators(const TrilinosWrappers::MPI::Vector &u,
-                        Vector<double>                      &squared,
-                        Vector<double>                      &contact);
-    /** Copy the committed material history of the ghost cells from their owners. */
-    void
-    share_ghost_history();
-    /**
-     * First Piola–Kirchhoff stress of @p cell's material for @p grad_u at
-     * @p point, with the history of the cell's quadrature point nearest to it
-     * (axisymmetric: @p hoop the hoop strain u_r/r there).
-     */
-    Tensor<2, dim>
-    stress_at(const typename Triangulation<dim>::cell_iterator &cell,
-              const Tensor<2, dim>                             &grad_u,
-              const Point<dim>                                 &point,
-              const double                                      hoop = 0.) const;
-    /** Add h_K² ‖div P‖²_K / E to @p squared; return ∫ P:∇u over the owned cells. */
-    double
-    add_volume_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &squared) const;
-    /** Add the stress jumps of the interior faces and the boundary residuals to @p squared. */
-    void
-    add_face_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &squared);
-    /**
-     * Add h_F ‖P N − t̄‖²_F / E of face @p f on the boundary, in the components
-     * no Dirichlet condition prescribes (t̄ the Neumann traction, 0 on a free face).
-     */
-    void
-    add_boundary_residual(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                          const unsigned int                                    f,
-                          const TrilinosWrappers::MPI::Vector                  &u,
-                          FEFaceValues<dim>                                    &face_values,
-                          Vector<double>                                       &squared);
-    /** Add the contact terms of the faces of Γc to @p contact. */
-    void
-    add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact);
-    /**
-     * The pressure estimate: the relative L2 mismatch on Γc between the normal
-     * traction of the recovered stress (StressRecovery) and λ_n.
-     */
-    double
-    pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const;
-    /**
-     * The square-root onset of the pressure fitted to the contact points of
-     * @p face (evaluated by @p nodes, the contact quadrature), with the pair's
-     * modulus; not valid() unless the face holds the end of the contact zone.
-     */
-    Contact::SquareRootOnset<dim>
-    square_root_onset(const ContactFace    &face,
-                      FaceEvaluator        &nodes,
-                      const Tensor<1, dim> &normal,
-                      double                master_compliance) const;
-    /** (1 − ν²)/E of the body holding a deformable master surface; 0 without one. */
-    double
-    deformable_master_compliance() const;
 
     // --- converged_step.cc ---
     /**
@@ -1175,7 +1102,7 @@ namespace StabilizedLagrangian
     ChosenParameters chosen;
     /** the current cycle's output: `Output/Output directory`, or its cycle's subdirectory */
     std::string output_directory;
-    /** the process's memory before the mesh existed (check_memory_for_growth) */
+    /** the process's memory before the mesh existed (MeshRefinement::refine checks growth) */
     Utilities::System::MemoryStats memory_at_start;
     /** wall time since the problem was built, for `Load stepping/Wall time limit` */
     Timer run_clock;

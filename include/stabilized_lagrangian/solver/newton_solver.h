@@ -12,6 +12,7 @@
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/error_estimator.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
@@ -71,19 +72,6 @@ namespace StabilizedLagrangian
     double schur_seconds       = 0.;
     double krylov_seconds      = 0.;
     double schur_solve_seconds = 0.;
-  };
-
-  /** @brief The energy estimate η and the solution's energy norm, at an iterate. */
-  struct EnergyEstimate
-  {
-    double error       = 0.; ///< η, √(N mm)
-    double energy_norm = 0.; ///< (∫ P:∇u)^½, √(N mm)
-    /** η against the energy norm (0 for an undeformed body) */
-    double
-    relative() const
-    {
-      return energy_norm > 0. ? error / energy_norm : 0.;
-    }
   };
 
   /**
