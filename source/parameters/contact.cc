@@ -237,5 +237,9 @@ namespace StabilizedLagrangian
     {
     }
 
+    // (the class is instantiated in functions.cc, which does not see this definition)
+    template BoundaryFunction<2>::BoundaryFunction(const std::string &, const unsigned int);
+    template BoundaryFunction<3>::BoundaryFunction(const std::string &, const unsigned int);
+
   } // namespace Parameters
 } // namespace StabilizedLagrangian
