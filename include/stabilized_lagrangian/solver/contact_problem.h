@@ -780,6 +780,12 @@ namespace StabilizedLagrangian
         return 0.;
       return x[0] > 0. ? u[0] / x[0] : grad_u[0][0];
     }
+    /** The reference cell of the mesh's cells (BodyMesh::cell_shape()). */
+    ReferenceCell
+    cell_shape() const
+    {
+      return body_mesh.cell_shape();
+    }
     /** The Gauss rule of the cells with @p n points per direction (BodyMesh::cell_gauss()). */
     Quadrature<dim>
     cell_gauss(const unsigned int n) const
