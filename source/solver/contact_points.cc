@@ -15,19 +15,6 @@ namespace StabilizedLagrangian
 {
   template <int dim>
   void
-  ContactProblem<dim>::assign_zones()
-  {
-    for (const auto &face : contact_faces)
-      {
-        const auto found = zone_of_boundary.find(face.cell->face(face.face_no)->boundary_id());
-        const unsigned int zone = found == zone_of_boundary.end() ? 0 : found->second;
-        for (unsigned int q = 0; q < face_quadrature(face).size(); ++q)
-          contact_states[face.first_point + q].zone = zone;
-      }
-  }
-
-  template <int dim>
-  void
   ContactProblem<dim>::setup_contact_points()
   {
     contact_faces.clear();
@@ -43,7 +30,7 @@ namespace StabilizedLagrangian
     set_consistent_nodal_weights();
     set_dual_multiplier_basis();
     contact_states.assign(n_points, ContactPointState<dim>());
-    assign_zones();
+    contact_zones.assign(contact_faces, contact_quadrature, contact_states);
     for (auto &state : contact_states)
       if (!friction_law_of(state).threshold_depends_on_pressure())
         state.friction_threshold = friction_law_of(state).threshold(0.);
@@ -152,7 +139,7 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::update_segments()
   {
     // the faces' corners (the vertices of a triangle face)
-    FaceEvaluator                       ends(spaces, face_nodes(1), false);
+    FaceEvaluator                       ends(spaces, body_mesh.face_nodes(1), false);
     std::vector<ContactFace>            faces;
     std::vector<ContactPointState<dim>> states;
     int                                 changed = 0;
@@ -188,7 +175,7 @@ namespace StabilizedLagrangian
       }
     contact_faces  = faces;
     contact_states = states;
-    assign_zones();
+    contact_zones.assign(contact_faces, contact_quadrature, contact_states);
     return Utilities::MPI::max(changed, mpi_communicator) == 1;
   }
 
@@ -310,7 +297,6 @@ namespace StabilizedLagrangian
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                               \
-  template void ContactProblem<dim>::assign_zones();                                      \
   template void ContactProblem<dim>::setup_contact_points();                              \
   template bool ContactProblem<dim>::finite_strain() const;                               \
   template void ContactProblem<dim>::set_consistent_nodal_weights();                      \

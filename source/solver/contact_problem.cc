@@ -1,12 +1,10 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/tria_description.h>
 
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <functional>
-#include <optional>
 
 #include <cmath>
 #include <limits>
@@ -115,8 +113,8 @@ namespace StabilizedLagrangian
       , adaptive_refinement(parsed<Parameters::AdaptiveRefinement>(prm))
       , chosen(contact_parameters)
       , output_directory(output_parameters.directory)
-      , triangulation_storage(new_triangulation(mpi_communicator, geometry->simplex_cells()))
-      , triangulation(*triangulation_storage)
+      , body_mesh(mpi_communicator, *geometry, contact_parameters.fe_pair)
+      , triangulation(body_mesh.triangulation())
       , dof_handler_u(triangulation)
       , dof_handler_m(triangulation)
       , verbose(verbose)
@@ -139,21 +137,8 @@ namespace StabilizedLagrangian
     obstacle_rotation                      = motion.rotation;
     obstacle_motion                        = std::make_shared<const Contact::ObstacleMotion<dim>>(
         obstacle_translation, obstacle_rotation, motion.rotation_centre);
-    materials = Materials::create_all<dim>(prm);
-    prm.enter_subsection("Contact");
-    friction_law = FrictionLaws::create(prm, "Contact");
-    prm.leave_subsection();
-    for (const auto &name : sections.zones)
-      {
-        prm.enter_subsection("Contact");
-        prm.enter_subsection("Zone " + name);
-        const auto boundaries = Utilities::split_string_list(prm.get("Boundary ids"));
-        if (!boundaries.empty())
-          contact_zones.push_back(
-              ContactZone{name, boundaries, FrictionLaws::create(prm, "Contact/Zone " + name)});
-        prm.leave_subsection();
-        prm.leave_subsection();
-      }
+    materials     = Materials::create_all<dim>(prm);
+    contact_zones = Contact::FrictionZones(prm, sections.zones);
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
     // the elements from the start: the boundary conditions' view
     // (boundary_view()) reads the displacement's before the first DoFs are set up
@@ -162,7 +147,7 @@ namespace StabilizedLagrangian
     multiplier_dofs_on_face = dofs_on_each_face(*fe_m);
     choose_complementarity();
     if (!contact_zones.empty() && weighted_complementarity())
-      throw InputError("Contact/Zone " + contact_zones[0].name +
+      throw InputError("Contact/Zone " + contact_zones.begin()->name +
                        ": contact zones with their own friction law are built for the "
                        "pointwise conditions only; use Contact/Complementarity = pointwise.");
     pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
@@ -247,79 +232,6 @@ namespace StabilizedLagrangian
             -> const Materials::Interface<dim> & { return material_of(cell); });
   }
 
-  namespace
-  {
-    std::string
-    list_ids(const std::set<types::boundary_id> &ids)
-    {
-      std::string result;
-      for (const auto id : ids)
-        result += (result.empty() ? "" : ", ") + std::to_string(id);
-      return result;
-    }
-  } // namespace
-
-  template <int dim>
-  std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
-  ContactProblem<dim>::new_triangulation(const MPI_Comm &communicator, const bool simplex)
-  {
-    if (simplex)
-      return std::make_unique<parallel::fullydistributed::Triangulation<dim>>(communicator);
-    return std::make_unique<parallel::distributed::Triangulation<dim>>(
-        communicator,
-        typename Triangulation<dim>::MeshSmoothing(
-            Triangulation<dim>::limit_level_difference_at_vertices));
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::distribute_simplex_mesh()
-  {
-    Triangulation<dim> serial;
-    geometry->create_mesh(serial);
-    serial.refine_global(extra_refinements);
-    if (serial.has_hanging_nodes() && fe_pair->displacement_degree() > 1 &&
-        Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
-      throw InputError(
-          "Geometry: a locally refined simplex mesh with the quadratic pair " +
-          contact_parameters.fe_pair +
-          " runs on one MPI rank only: deal.II 9.4 cannot constrain the hanging nodes of P2 "
-          "next to another rank's cells. Use P1/P1, one rank, or uniform refinement only "
-          "(Local refinements = 0).");
-    // METIS is deterministic: the same ranks get the same cells in every run (restart)
-    GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
-    const auto description =
-        TriangulationDescription::Utilities::create_description_from_triangulation(
-            serial, mpi_communicator);
-    triangulation.clear();
-    for (const auto id : serial.get_manifold_ids())
-      if (id != numbers::flat_manifold_id)
-        triangulation.set_manifold(id, serial.get_manifold(id));
-    triangulation.create_triangulation(description);
-    // The faces between this rank's ghost layer and the cells it does not
-    // hold are boundary faces of its local mesh, with the default id 0, a
-    // user's id: move them to an id of their own, so that no boundary or
-    // contact condition sees them.
-    for (const auto &cell : triangulation.active_cell_iterators())
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary() &&
-            !serial.create_cell_iterator(cell->id())->face(f)->at_boundary())
-          cell->face(f)->set_boundary_id(ghost_layer_boundary_id);
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::refine_globally()
-  {
-    if (simplex_mesh())
-      {
-        ++extra_refinements;
-        distribute_simplex_mesh();
-      }
-    else
-      triangulation.refine_global(1);
-  }
-
   template <int dim>
   void
   ContactProblem<dim>::check_cell_shape() const
@@ -379,102 +291,14 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::share_ghost_boundary_ids()
-  {
-    using Ids = std::vector<types::boundary_id>;
-    GridTools::exchange_cell_data_to_ghosts<Ids, Triangulation<dim>>(
-        triangulation,
-        [](const typename Triangulation<dim>::active_cell_iterator &cell) -> std::optional<Ids> {
-          Ids ids;
-          for (const auto &face : cell->face_iterators())
-            ids.push_back(face->at_boundary() ? face->boundary_id() : numbers::invalid_boundary_id);
-          return ids;
-        },
-        [](const typename Triangulation<dim>::active_cell_iterator &cell, const Ids &ids) {
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              cell->face(f)->set_boundary_id(ids[f]);
-        });
-  }
-
-  template <int dim>
-  void
   ContactProblem<dim>::make_grid()
   {
     check_cell_shape();
-    if (simplex_mesh())
-      distribute_simplex_mesh();
-    else
-      {
-        geometry->create_mesh(triangulation);
-        share_ghost_boundary_ids();
-      }
-    resolve_boundaries();
-    assign_material_slots();
-    if (axisymmetric)
-      {
-        double smallest_radius = std::numeric_limits<double>::max(), size = 0.;
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const unsigned int v : cell->vertex_indices())
-              {
-                smallest_radius = std::min(smallest_radius, cell->vertex(v)[0]);
-                size            = std::max(size, cell->diameter());
-              }
-        smallest_radius = Utilities::MPI::min(smallest_radius, mpi_communicator);
-        size            = Utilities::MPI::max(size, mpi_communicator);
-        if (smallest_radius < -1e-10 * size)
-          {
-            std::ostringstream message;
-            message << "Geometry/Axisymmetric = true: the mesh reaches x = " << smallest_radius
-                    << " mm, but x is the radius r >= 0 of the solid of revolution. Mesh only "
-                       "the half x >= 0 of the section (Geometry/half ball/Symmetry planes = "
-                       "true, or a Gmsh mesh of it).";
-            throw InputError(message.str());
-          }
-      }
-    for (const auto &condition : boundary_conditions)
-      for (const auto id : condition->boundaries())
-        require_boundary(id, condition->section() + "/Boundary id");
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::require_boundary(const types::boundary_id id, const std::string &entry) const
-  {
-    // (a rank of a fully distributed mesh sees only the boundaries near its cells)
-    std::set<types::boundary_id> mesh_ids;
-    for (const auto mesh_id : triangulation.get_boundary_ids())
-      if (mesh_id != ghost_layer_boundary_id)
-        mesh_ids.insert(mesh_id);
-    mesh_ids = Utilities::MPI::compute_set_union(mesh_ids, mpi_communicator);
-    if (mesh_ids.count(id) == 0)
-      throw InputError(entry + " = " + std::to_string(id) +
-                       ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +
-                       ".");
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::resolve_boundaries()
-  {
-    // boundaries given by name: the mesh's names (a Gmsh file's physical groups)
-    const auto names   = geometry->boundary_names();
+    body_mesh.create(fe_pair->displacement_degree());
+    // the boundaries given by name: the mesh's ids (a Gmsh file's physical
+    // groups); then the contact boundaries, zones and master checked
     const auto resolve = [&](const std::string &name, const std::string &entry) {
-      const auto found = names.find(name);
-      if (found != names.end())
-        return found->second;
-      std::string groups;
-      for (const auto &[group, id] : names)
-        groups +=
-            (groups.empty() ? "" : ", ") + ("'" + group + "' (id " + std::to_string(id) + ")");
-      std::string bodies;
-      for (const auto &body : geometry->body_names())
-        bodies += (bodies.empty() ? "" : ", ") + ("'" + body.first + "'");
-      throw InputError(entry + " = '" + name + "': the mesh has no boundary of this name; " +
-                       (names.empty() ? std::string("its boundaries have ids only")
-                                      : "its boundaries are " + groups) +
-                       (bodies.empty() ? "" : "; its bodies are " + bodies) + ".");
+      return body_mesh.boundary_named(name, entry);
     };
     for (const auto &name : contact_parameters.boundary_names)
       chosen.contact_boundaries.insert(resolve(name, "Contact/Contact boundary ids"));
@@ -482,103 +306,23 @@ namespace StabilizedLagrangian
       chosen.master_boundaries.insert(resolve(name, "Contact/Master boundary ids"));
     for (const auto &condition : boundary_conditions)
       condition->resolve_boundaries(resolve);
-
     for (const auto id : chosen.contact_boundaries)
-      require_boundary(id, "Contact/Contact boundary ids");
-    zone_of_boundary.clear();
-    for (unsigned int z = 0; z < contact_zones.size(); ++z)
-      for (const auto &entry : contact_zones[z].boundaries)
-        {
-          const std::string where = "Contact/Zone " + contact_zones[z].name + "/Boundary ids";
-          const auto        id    = Parameters::boundary_id_or_name(entry, where);
-          const types::boundary_id boundary = id ? *id : resolve(entry, where);
-          if (chosen.contact_boundaries.count(boundary) == 0)
-            throw InputError(where + ": boundary " + entry +
-                             " is not a contact boundary (Contact/Contact boundary ids).");
-          if (!zone_of_boundary.emplace(boundary, z + 1).second)
-            throw InputError(where + ": boundary " + entry + " is already in another zone.");
-        }
+      body_mesh.require_boundary(id, "Contact/Contact boundary ids");
+    contact_zones.resolve(resolve, chosen.contact_boundaries);
     for (const auto id : chosen.master_boundaries)
       {
-        require_boundary(id, "Contact/Master boundary ids");
+        body_mesh.require_boundary(id, "Contact/Master boundary ids");
         if (chosen.contact_boundaries.count(id) > 0)
           throw InputError("Contact/Master boundary ids: boundary " + std::to_string(id) +
                            " is also in Contact/Contact boundary ids; the slave and master "
                            "surfaces must be different boundaries.");
       }
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::assign_material_slots()
-  {
-    // bodies of the material slots, by name (a Gmsh file's physical groups) or material id
-    std::set<types::material_id> mesh_bodies;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        mesh_bodies.insert(cell->material_id());
-    {
-      std::set<types::material_id>          all_bodies;
-      const std::vector<types::material_id> local(mesh_bodies.begin(), mesh_bodies.end());
-      for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
-        all_bodies.insert(part.begin(), part.end());
-      mesh_bodies = all_bodies;
-    }
-    const auto body_names = geometry->body_names();
-    material_slots.clear();
-    for (unsigned int slot = 1; slot < materials.size(); ++slot)
-      for (const auto &body : materials[slot].bodies)
-        {
-          const std::string  entry = materials[slot].slot + "/Bodies";
-          types::material_id id    = numbers::invalid_material_id;
-          const auto         named = body_names.find(body);
-          if (named != body_names.end())
-            id = named->second;
-          else if (!body.empty() && body.find_first_not_of("0123456789") == std::string::npos)
-            id = static_cast<types::material_id>(std::stoul(body));
-          if (id == numbers::invalid_material_id || mesh_bodies.count(id) == 0)
-            {
-              std::string known;
-              for (const auto &[name, tag] : body_names)
-                known += (known.empty() ? "" : ", ") +
-                         ("'" + name + "' (id " + std::to_string(tag) + ")");
-              for (const auto tag : mesh_bodies)
-                known += (known.empty() ? "" : ", ") + ("id " + std::to_string(tag));
-              throw InputError(entry + " = '" + body +
-                               "': the mesh has no body of this name or "
-                               "material id; its bodies are " +
-                               known + ".");
-            }
-          if (material_slots.count(id) > 0)
-            throw InputError(entry + " = '" + body + "': this body is already given the model of " +
-                             materials[material_slots[id]].slot + ".");
-          material_slots[id] = slot;
-        }
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::any_law(
-      const std::function<bool(const FrictionLaws::Interface &)> &property) const
-  {
-    return property(*friction_law) ||
-           std::any_of(contact_zones.begin(), contact_zones.end(), [&](const auto &zone) {
-             return property(*zone.friction_law);
-           });
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::any_friction() const
-  {
-    return any_law([](const auto &law) { return law.has_friction(); });
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::any_pressure_dependent_threshold() const
-  {
-    return any_law([](const auto &law) { return law.threshold_depends_on_pressure(); });
+    body_mesh.assign_material_slots(materials);
+    if (axisymmetric)
+      body_mesh.check_meridian_section();
+    for (const auto &condition : boundary_conditions)
+      for (const auto id : condition->boundaries())
+        body_mesh.require_boundary(id, condition->section() + "/Boundary id");
   }
 
   template class ContactProblem<2>;

@@ -31,7 +31,7 @@ namespace StabilizedLagrangian
     // The nodes of the contact faces: the Gauss-Lobatto points of the larger
     // of the two degrees (the vertices for Q1/P1, also the midsides for
     // quadratic pairs; on triangle faces the vertices only: see face_nodes())
-    const Quadrature<dim - 1> node_quadrature = face_nodes(
+    const Quadrature<dim - 1> node_quadrature = body_mesh.face_nodes(
         (dim == 3 && simplex_mesh())
             ? 1u
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));

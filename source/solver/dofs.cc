@@ -55,13 +55,15 @@ namespace StabilizedLagrangian
     locally_relevant.compress();
 
     const unsigned int u_degree = fe_pair->displacement_degree();
-    cell_quadrature             = cell_gauss(u_degree + 1);
+    cell_quadrature             = body_mesh.cell_gauss(u_degree + 1);
     if (contact_parameters.quadrature == Parameters::ContactQuadrature::gauss)
-      contact_quadrature = face_gauss(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
+      contact_quadrature =
+          body_mesh.face_gauss(std::max(u_degree, fe_pair->multiplier_degree()) + 1);
     else
       // nodal for the multiplier when it is at least as rich as the displacement
       // trace; otherwise enough points to integrate ψ φ·n exactly
-      contact_quadrature = face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
+      contact_quadrature =
+          body_mesh.face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
 
     setup_constraints();
 
@@ -176,23 +178,6 @@ namespace StabilizedLagrangian
         }
     sparsity_stale = true;
     ++partner_dof_growths;
-  }
-
-  template <int dim>
-  Quadrature<dim - 1>
-  ContactProblem<dim>::face_nodes(const unsigned int degree) const
-  {
-    if (!simplex_mesh() || dim == 2)
-      return QGaussLobatto<dim - 1>(degree + 1);
-    if (degree > 1)
-      throw InputError("Contact/Contact quadrature = Gauss-Lobatto needs degree 1 on tetrahedra "
-                       "(P1/P1): the quadratic nodal weights of a triangle vanish at its "
-                       "vertices. Use Contact quadrature = Gauss with " +
-                       contact_parameters.fe_pair + ".");
-    std::vector<Point<dim - 1>> vertices;
-    for (const unsigned int v : ReferenceCells::get_simplex<dim - 1>().vertex_indices())
-      vertices.push_back(ReferenceCells::get_simplex<dim - 1>().template vertex<dim - 1>(v));
-    return Quadrature<dim - 1>(vertices, std::vector<double>(vertices.size(), 1. / 6.));
   }
 
   template <int dim>
@@ -377,10 +362,9 @@ namespace StabilizedLagrangian
   template void                                   ContactProblem<dim>::reinit_system_vectors(); \
   template std::vector<BoundingBox<dim>>          ContactProblem<dim>::slave_search_region(     \
       const TrilinosWrappers::MPI::Vector *) const;                                    \
-  template void                ContactProblem<dim>::update_partner_configuration();             \
-  template void                ContactProblem<dim>::follow_partner_dofs();                      \
-  template Quadrature<dim - 1> ContactProblem<dim>::face_nodes(const unsigned int) const;       \
-  template void                ContactProblem<dim>::setup_multiplier_numbering();               \
+  template void ContactProblem<dim>::update_partner_configuration();                            \
+  template void ContactProblem<dim>::follow_partner_dofs();                                     \
+  template void ContactProblem<dim>::setup_multiplier_numbering();                              \
   template std::vector<std::pair<types::global_dof_index, unsigned int>>                        \
                 ContactProblem<dim>::locally_owned_multiplier_components() const;               \
   template void ContactProblem<dim>::setup_sparsity();                                          \

@@ -65,7 +65,7 @@ namespace StabilizedLagrangian
         setup();
       else
         {
-          refine_globally();
+          body_mesh.refine_globally(fe_pair->displacement_degree());
           setup_after_refinement();
         }
       return inf_sup_view();

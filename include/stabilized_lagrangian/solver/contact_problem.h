@@ -29,9 +29,11 @@
 #include <stabilized_lagrangian/contact/cumulative_slip.h>
 #include <stabilized_lagrangian/contact/friction_law.h>
 #include <stabilized_lagrangian/contact/friction_law_check.h>
+#include <stabilized_lagrangian/contact/friction_zones.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
+#include <stabilized_lagrangian/geometry/body_mesh.h>
 #include <stabilized_lagrangian/geometry/scene.h>
 #include <stabilized_lagrangian/materials/f_bar.h>
 #include <stabilized_lagrangian/materials/material.h>
@@ -70,7 +72,8 @@ namespace StabilizedLagrangian
    * semi-multiplier Λ on Γc only, assembled as one monolithic system
    * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
    * phase, in source/solver/ (each section of the private part names its
-   * file): contact_problem.cc the mesh and the setup, setup_checks.cc what
+   * file): contact_problem.cc the mesh (built and held by BodyMesh,
+   * geometry/body_mesh.h) and the setup, setup_checks.cc what
    * the checks of the scene and the inf-sup test read and the start of a
    * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
@@ -87,7 +90,9 @@ namespace StabilizedLagrangian
    * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h),
    * the residual error estimate is ErrorEstimator's (solver/error_estimator.h;
    * error_estimator.cc builds its view) and the refinement of the mesh
-   * MeshRefinement's (solver/mesh_refinement.h).
+   * MeshRefinement's (solver/mesh_refinement.h); the mesh is BodyMesh's
+   * (geometry/body_mesh.h), the friction laws of Γc and its zones are
+   * Contact::FrictionZones (contact/friction_zones.h).
    */
   template <int dim> class ContactProblem : private ContactPointLaw<dim>
   {
@@ -528,45 +533,18 @@ namespace StabilizedLagrangian
     continue_outputs(const unsigned long            cycles_bytes,
                      const StatisticsWriter::State &statistics_state);
 
-    // --- contact_problem.cc: the mesh, and the setup after each refinement ---
+    // --- contact_problem.cc: the mesh (BodyMesh), and the setup after each refinement ---
+    /** Build the mesh, resolve the boundaries and bodies the input names on it, check them. */
     void
     make_grid();
-    /**
-     * The boundary ids of the ghost cells' faces as their owners set them: a
-     * geometry that sets ids from its cells' neighbourhood (close_contact_zone)
-     * sees part of it from the ghost layer only, and every rank must agree
-     * which faces are on Γc (the multiplier numbering counts on it).
-     */
-    void
-    share_ghost_boundary_ids();
-    /**
-     * The triangulation for the geometry's cells: p4est's for hypercubes
-     * (adaptive refinement), the fully distributed one for simplices (p4est
-     * does not hold them; deal.II 9.4 cannot refine it adaptively).
-     */
-    static std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
-    new_triangulation(const MPI_Comm &communicator, const bool simplex);
-    /**
-     * Simplex meshes: build the geometry's mesh serially, refine it
-     * `extra_refinements` more times, partition it (METIS) and give each rank
-     * its share and a ghost layer.
-     */
-    void
-    distribute_simplex_mesh();
-    /** Simplex meshes: the id of the local boundary faces that are not on the body's boundary. */
-    static constexpr types::boundary_id ghost_layer_boundary_id =
-        numbers::internal_face_boundary_id - 1;
     /** Refuse a pair for the other cell shape, and what simplex meshes cannot do yet. */
     void
     check_cell_shape() const;
-    /** Refine every cell once (the inf-sup test's sequence of meshes). */
-    void
-    refine_globally();
-    /** Whether the cells are triangles / tetrahedra. */
+    /** Whether the cells are triangles / tetrahedra (BodyMesh::simplex()). */
     bool
     simplex_mesh() const
     {
-      return geometry->simplex_cells();
+      return body_mesh.simplex();
     }
     /**
      * The measure of the model at @p x: 2πr (r = x₁) in an axisymmetric model,
@@ -589,45 +567,24 @@ namespace StabilizedLagrangian
         return 0.;
       return x[0] > 0. ? u[0] / x[0] : grad_u[0][0];
     }
-    /** The reference cell of the mesh's cells. */
+    /** The reference cell of the mesh's cells (BodyMesh::cell_shape()). */
     ReferenceCell
     cell_shape() const
     {
-      return simplex_mesh() ? ReferenceCells::get_simplex<dim>()
-                            : ReferenceCells::get_hypercube<dim>();
+      return body_mesh.cell_shape();
     }
-    /**
-     * The Gauss rule of the cells with @p n points per direction (QGauss on
-     * hypercubes; on simplices QGaussSimplex, exact for the same degree 2n − 1).
-     */
+    /** The Gauss rule of the cells with @p n points per direction (BodyMesh::cell_gauss()). */
     Quadrature<dim>
     cell_gauss(const unsigned int n) const
     {
-      return cell_shape().template get_gauss_type_quadrature<dim>(n);
+      return body_mesh.cell_gauss(n);
     }
-    /** The Gauss rule of the faces with @p n points per direction. */
+    /** The Gauss rule of the faces with @p n points per direction (BodyMesh::face_gauss()). */
     Quadrature<dim - 1>
     face_gauss(const unsigned int n) const
     {
-      return cell_shape().face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(n);
+      return body_mesh.face_gauss(n);
     }
-    /**
-     * The rule whose points are the nodes of the contact faces for
-     * degree @p degree: Gauss–Lobatto on lines and quadrilaterals; the
-     * vertices (weight area/3) on triangles, where only degree 1 has positive
-     * nodal weights.
-     */
-    Quadrature<dim - 1>
-    face_nodes(const unsigned int degree) const;
-    /** Resolve the boundaries given by name to the mesh's ids and check the contact ones. */
-    void
-    resolve_boundaries();
-    /** The material slot of each body given in a `Material n/Bodies` entry. */
-    void
-    assign_material_slots();
-    /** Throw an InputError naming @p entry when the mesh has no boundary @p id. */
-    void
-    require_boundary(const types::boundary_id id, const std::string &entry) const;
     /** DoFs, sparsity, contact points and history after the mesh changed. */
     void
     setup_after_refinement();
@@ -880,8 +837,7 @@ namespace StabilizedLagrangian
     const Materials::BodyMaterial<dim> &
     body_of(const typename Triangulation<dim>::cell_iterator &cell) const
     {
-      const auto slot = material_slots.find(cell->material_id());
-      return materials[slot == material_slots.end() ? 0 : slot->second];
+      return materials[body_mesh.material_slot(cell->material_id())];
     }
     /**
      * The response of @p cell's material at its quadrature point @p q (the
@@ -1117,9 +1073,8 @@ namespace StabilizedLagrangian
     std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_rotation;
     /** the two, about `Obstacle/Motion/Rotation centre` */
     std::shared_ptr<const Contact::ObstacleMotion<dim>> obstacle_motion;
-    /** the default model first, then the slots in use; material_slots maps a body's id to one */
-    std::vector<Materials::BodyMaterial<dim>>  materials;
-    std::map<types::material_id, unsigned int> material_slots;
+    /** the default model first, then the slots in use (BodyMesh::material_slot() of a body) */
+    std::vector<Materials::BodyMaterial<dim>> materials;
     /**
      * the contact partner, built with the DoFs (dofs.cc): the deformable
      * master's surface when `Contact/Master boundary ids` is set, else the obstacle
@@ -1131,49 +1086,39 @@ namespace StabilizedLagrangian
     /** the locally relevant DoFs grew since the sparsity pattern was built */
     bool sparsity_stale = false;
     /** how often the ghosts grew by the partner's DoFs on this mesh (follow_partner_dofs()) */
-    unsigned int                             partner_dof_growths = 0;
-    std::unique_ptr<FrictionLaws::Interface> friction_law;
-    /** The contact zones (`Contact/Zone <name>`): name, boundary entries, own friction law. */
-    struct ContactZone
-    {
-      std::string                              name;
-      std::vector<std::string>                 boundaries; ///< ids or names, as given
-      std::unique_ptr<FrictionLaws::Interface> friction_law;
-    };
-    std::vector<ContactZone> contact_zones;
-    /** The zone (1-based; 0: the default law) of each contact boundary in a zone */
-    std::map<types::boundary_id, unsigned int> zone_of_boundary;
+    unsigned int partner_dof_growths = 0;
+    /** `Contact/Friction law` and the contact zones (`Contact/Zone <name>`), each with its law */
+    Contact::FrictionZones contact_zones;
     /** The friction law at a contact point: its zone's, or Contact/Friction law. */
     const FrictionLaws::Interface &
     friction_law_of(const ContactPointState<dim> &state) const override
     {
-      return state.zone == 0 ? *friction_law : *contact_zones[state.zone - 1].friction_law;
+      return contact_zones.law_of(state.zone);
     }
-    /** Whether the default law or some zone's has @p property. */
-    bool
-    any_law(const std::function<bool(const FrictionLaws::Interface &)> &property) const;
     /** Whether some zone has friction (then Λ exists on the whole of Γc). */
     bool
-    any_friction() const;
+    any_friction() const
+    {
+      return contact_zones.any_friction();
+    }
     /** Whether some zone's threshold depends on the pressure (then the friction loop iterates). */
     bool
-    any_pressure_dependent_threshold() const;
-    /** Each contact point's zone, from its face's boundary. */
-    void
-                                                 assign_zones();
+    any_pressure_dependent_threshold() const
+    {
+      return contact_zones.any_pressure_dependent_threshold();
+    }
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
     Materials::QuadratureHistory                 material_history;
     /** Set by an assembly that met a material state outside its admissible range. */
     std::string inadmissible_state;
 
     /** F-bar: ∇u at each cell's centre for the output and the error estimate (by active index) */
-    mutable std::vector<Tensor<2, dim>>                          centre_gradients;
-    mutable std::vector<std::array<double, dim + 1>>             kept_volume_coefficients;
-    std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation_storage;
-    parallel::DistributedTriangulationBase<dim>                 &triangulation;
-    /** simplex meshes: uniform refinements beyond the geometry's (refine_globally) */
-    unsigned int                        extra_refinements = 0;
-    std::unique_ptr<FiniteElement<dim>> fe_u, fe_m;
+    mutable std::vector<Tensor<2, dim>>              centre_gradients;
+    mutable std::vector<std::array<double, dim + 1>> kept_volume_coefficients;
+    /** the bodies' distributed mesh, its cell shape and quadratures */
+    BodyMesh<dim>                                body_mesh;
+    parallel::DistributedTriangulationBase<dim> &triangulation;
+    std::unique_ptr<FiniteElement<dim>>          fe_u, fe_m;
     /**
      * per face number, fe_m's DoFs on that face, ascending (the face's own
      * DoFs: FE_SimplexP's has_support_on_face() says true for all)
