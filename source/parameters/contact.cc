@@ -228,14 +228,5 @@ namespace StabilizedLagrangian
           }
       prm.leave_subsection();
     }
-
-    template <int dim>
-    BoundaryFunction<dim>::BoundaryFunction(const std::string &entry,
-                                            const unsigned int n_components)
-        : Functions::ParsedFunction<dim>(n_components)
-        , entry(entry)
-    {
-    }
-
   } // namespace Parameters
 } // namespace StabilizedLagrangian

@@ -43,6 +43,14 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    BoundaryFunction<dim>::BoundaryFunction(const std::string &entry,
+                                            const unsigned int n_components)
+        : Functions::ParsedFunction<dim>(n_components)
+        , entry(entry)
+    {
+    }
+
+    template <int dim>
     void
     BoundaryFunction<dim>::vector_value(const Point<dim> &point, Vector<double> &values) const
     {
