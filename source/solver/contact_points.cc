@@ -40,7 +40,7 @@ namespace StabilizedLagrangian
     sparsity_ready = false;
     update_pairings(true);
     setup_sparsity();
-    update_statuses();
+    nested_loops.update_statuses();
     if (!free_rigid_motions.empty() && points_in_contact() == 0)
       close_nearest_points();
   }
@@ -127,8 +127,8 @@ namespace StabilizedLagrangian
       {
         // the new points take the threshold and status of the current iterate,
         // which the loops would give them
-        update_friction_thresholds();
-        update_statuses();
+        nested_loops.update_friction_thresholds();
+        nested_loops.update_statuses();
       }
     if (sparsity_ready && (sparsity_stale || pairings_left_sparsity()))
       setup_sparsity();

@@ -15,9 +15,9 @@
 
 namespace StabilizedLagrangian
 {
-  // The load path: load steps, step cuts and the log; each step is solved
-  // by the loops of nested_loops.cc. The run's summary (the log's block and
-  // run_summary.csv) is in run_summary.cc.
+  // The load path: load steps and step cuts; each step is solved by the
+  // loops of nested_loops.cc (NestedLoops). The log's lines and the run's
+  // summary (the log's block and run_summary.csv) are RunLog's (run_log.cc).
 
   template <int dim>
   bool
@@ -197,7 +197,7 @@ namespace StabilizedLagrangian
     if (!resumed)
       start_load_path(steps);
     timer.reset();
-    print_path_banner();
+    RunLog<dim>(run_log_view()).print_path_banner();
     if (!resumed)
       commit_converged_step(0, 0.);
 
@@ -217,7 +217,7 @@ namespace StabilizedLagrangian
         partner->set_time(step_begin, time);
         extrapolate_last_step(step_size);
         apply_dirichlet_values(time);
-        if (!solve_load_step(stats) || !newton.plausible_converged_state())
+        if (!nested_loops.solve_load_step(stats) || !newton.plausible_converged_state())
           {
             saved.restore();
             update_ghosts();
@@ -241,7 +241,7 @@ namespace StabilizedLagrangian
         if (stop_at_wall_time_limit(steps, path, checkpointed))
           return false;
       }
-    finish_load_path(steps, path);
+    RunLog<dim>(run_log_view()).finish_load_path(steps.step(), path);
     return true;
   }
 
@@ -259,39 +259,6 @@ namespace StabilizedLagrangian
     steps.restart();
     path_start_work = work;
     last_step_size  = 0.;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::print_path_banner() const
-  {
-    pcout << "stabilized_lagrangian: " << dim << "D, " << triangulation.n_global_active_cells()
-          << " cells, " << n_u << " displacement DoFs + " << n_multipliers
-          << " multiplier DoFs on the contact boundary, "
-          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s), "
-          << system_matrix.n_nonzero_elements() << " matrix entries\n";
-    const unsigned int hanging_multipliers = Utilities::MPI::sum(
-        static_cast<unsigned int>(std::count_if(hanging_constraints.get_lines().begin(),
-                                                hanging_constraints.get_lines().end(),
-                                                [&](const auto &line) {
-                                                  return line.index >= n_u &&
-                                                         locally_owned.is_element(line.index);
-                                                })),
-        mpi_communicator);
-    if (hanging_multipliers > 0)
-      pcout << "  " << hanging_multipliers
-            << " multiplier DoFs at hanging nodes of the contact boundary\n";
-    if (!loops.can_change_quantity(Loop::geometry))
-      pcout << "  geometry loop runs once per step: flat obstacle and small strain\n";
-    if (!any_friction())
-      pcout << "  friction loop runs once per step: frictionless\n";
-    else if (!any_pressure_dependent_threshold())
-      pcout << "  friction loop runs once per step: fixed (Tresca) threshold\n";
-    for (const auto &[name, loop] : {std::pair{"geometry", Loop::geometry},
-                                     std::pair{"friction", Loop::friction},
-                                     std::pair{"status", Loop::status}})
-      if (loops.linearised(loop))
-        pcout << "  " << name << " loop folded into the generalized Newton\n";
   }
 
   template <int dim>
@@ -351,7 +318,7 @@ namespace StabilizedLagrangian
     step_start      = ghosted_solution;
     stats.wall_time = step_clock.wall_time();
     statistics.write(stats);
-    print_step_line(stats, path.wall_clock.wall_time());
+    RunLog<dim>(run_log_view()).print_step_line(stats, path.wall_clock.wall_time());
     if (stats.friction_law_violations > 0 && ++path.friction_law_warnings <= 3)
       pcout << "WARNING: load step " << stats.step << ": " << stats.friction_law_report
             << " The Newton criterion accepted this state"
@@ -397,51 +364,8 @@ namespace StabilizedLagrangian
                   ? "; `--resume` continues from the checkpoint written now.\n"
                   : "; with `Output/Checkpoint interval` > 0 it could be resumed.\n");
     wall_time_limit_reached = true;
-    write_run_summary(step, path.wall_clock.wall_time(), work_on_path());
+    RunLog<dim>(run_log_view()).write_run_summary(step, path.wall_clock.wall_time());
     return true;
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::finish_load_path(const LoadStepController &steps, const PathLog &path)
-  {
-    print_run_summary(steps.step(), path.wall_clock.wall_time());
-    // a scene that runs but cannot be what was meant: the contact surface is
-    // not the one that touches the obstacle, or the obstacle faces away
-    if (path.most_points_in_contact <= 1 && path.contact_point_count > 1)
-      pcout << "WARNING: at most " << path.most_points_in_contact << " of the "
-            << path.contact_point_count
-            << " contact points was in contact in any load step. Is `Contact/Contact boundary "
-               "ids` the surface that meets the obstacle, and does the obstacle's normal point "
-               "towards the body?\n";
-    if (verbose)
-      timer.print_wall_time_statistics(mpi_communicator);
-    write_run_summary(steps.step(), path.wall_clock.wall_time(), work_on_path());
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::print_step_line(const StepStatistics &s, const double elapsed) const
-  {
-    const double remaining = elapsed / time * (load_stepping.end_time - time);
-    // formatted apart, so that the log's stream keeps its own precision
-    std::ostringstream line;
-    line << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(6)
-         << s.time << "  geometry " << s.geometry_iterations << "  friction "
-         << s.friction_iterations << "  status " << s.status_iterations << "  Newton "
-         << std::setw(3) << s.newton_iterations
-         << (s.failed_newton_iterations > 0
-                 ? " (+" + std::to_string(s.failed_newton_iterations) + " in failed attempts)"
-                 : std::string())
-         << (s.adaptive_stops > 0
-                 ? " (" + std::to_string(s.adaptive_stops) + " loop(s) stopped adaptively)"
-                 : std::string())
-         << "  residual " << std::scientific << std::setprecision(2) << s.final_residual << ' '
-         << force_unit(false) << ", scaled " << s.final_scaled << std::defaultfloat << "  contact "
-         << s.points_in_contact << "/" << s.contact_points << " (stick " << s.points_stick
-         << ", slip " << s.points_slip << ")  elapsed " << std::fixed << std::setprecision(1)
-         << elapsed << " s, remaining ~" << remaining << " s\n";
-    pcout << line.str() << std::flush;
   }
 
   template <int dim>
@@ -499,14 +423,10 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::finish_targeted_cycles(unsigned int, const CycleTotals &);    \
   template bool ContactProblem<dim>::solve_load_path(bool);                                        \
   template void ContactProblem<dim>::start_load_path(LoadStepController &);                        \
-  template void ContactProblem<dim>::print_path_banner() const;                                    \
   template bool ContactProblem<dim>::cut_load_step(LoadStepController &);                          \
   template void ContactProblem<dim>::record_load_step(StepStatistics &, PathLog &, const Timer &); \
   template bool ContactProblem<dim>::stop_at_wall_time_limit(                                      \
       const LoadStepController &, const PathLog &, bool);                                          \
-  template void ContactProblem<dim>::finish_load_path(const LoadStepController &,                  \
-                                                      const PathLog &);                            \
-  template void ContactProblem<dim>::print_step_line(const StepStatistics &, double) const;        \
   template void ContactProblem<dim>::extrapolate_last_step(double);                                \
   template void ContactProblem<dim>::apply_dirichlet_values(double);
 

@@ -449,7 +449,9 @@ namespace StabilizedLagrangian
         [this](const typename NewtonSolver<dim>::PointVisitor &f) { for_each_contact_point(f); },
         [this](const std::vector<std::vector<unsigned char>> &seen,
                const std::vector<unsigned char>              &statuses,
-               const unsigned int end) { return first_equal(seen, statuses, end); }};
+               const unsigned int                             end) {
+          return first_equal(seen, statuses, end, mpi_communicator);
+        }};
   }
 
   // Explicit instantiation of the members defined in this file.

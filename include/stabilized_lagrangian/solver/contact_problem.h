@@ -50,7 +50,9 @@
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
 #include <stabilized_lagrangian/solver/mesh_refinement.h>
+#include <stabilized_lagrangian/solver/nested_loops.h>
 #include <stabilized_lagrangian/solver/newton_solver.h>
+#include <stabilized_lagrangian/solver/run_log.h>
 #include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
@@ -77,15 +79,17 @@ namespace StabilizedLagrangian
    * the checks of the scene and the inf-sup test read and the start of a
    * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
-   * load_path.cc the load steps, run_summary.cc the run's summary,
-   * nested_loops.cc the loops of seed §2.2, newton.cc the view the Newton
-   * iteration reads, converged_step.cc what an accepted step commits,
+   * load_path.cc the load steps, run_log.cc the view the log reads,
+   * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
+   * the Newton iteration reads, converged_step.cc what an accepted step commits,
    * refinement.cc the step's statistics and reactions, the adaptive
    * refinement's view and the cycles' errors, run_state_list.cc the run's
    * state (what a step cut restores and a checkpoint keeps), checkpoint.cc
-   * checkpoints. The Newton iteration is NewtonSolver's
+   * checkpoints. The loops of seed §2.2 are NestedLoops'
+   * (solver/nested_loops.h), the Newton iteration they call NewtonSolver's
    * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
-   * newton_line_search.cc); the output files are written by SolutionOutput
+   * newton_line_search.cc); the log of the load path and run_summary.csv are
+   * written by RunLog (solver/run_log.h), the output files are written by SolutionOutput
    * (postprocessing/solution_output.h), the scene is checked by SceneChecks
    * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h),
    * the residual error estimate is ErrorEstimator's (solver/error_estimator.h;
@@ -307,7 +311,7 @@ namespace StabilizedLagrangian
     ContactConditionsData<dim>
     conditions_data();
 
-    // --- load_path.cc: load steps, step cuts, the log; run_summary.cc: run_summary.csv ---
+    // --- load_path.cc: load steps, step cuts ---
     /** What the refinement cycles took in all (an accuracy target reports it). */
     struct CycleTotals
     {
@@ -342,28 +346,9 @@ namespace StabilizedLagrangian
      */
     bool
     solve_load_path(const bool resumed = false);
-    /** What the log and run_summary.csv gather along the load path. */
-    struct PathLog
-    {
-      PathLog(const double start_time, const WorkCounters &work)
-          : start_time(start_time)
-          , at_step_start(work)
-      {
-      }
-      Timer        wall_clock;
-      double       start_time;
-      WorkCounters at_step_start;
-      /** the most contact points in contact in any step, and their number */
-      unsigned int most_points_in_contact = 0, contact_point_count = 0;
-      /** steps whose state breaks the friction law (the first few are named) */
-      unsigned int friction_law_warnings = 0;
-    };
     /** Open the output of a load path from rest; the next step is the nominal one. */
     void
     start_load_path(LoadStepController &steps);
-    /** The sizes of the problem and the loops that run once or are folded into Newton. */
-    void
-    print_path_banner() const;
     /**
      * After a failed attempt (the state restored): cut the step and return
      * true, or report why the path stops and return false.
@@ -381,12 +366,6 @@ namespace StabilizedLagrangian
     stop_at_wall_time_limit(const LoadStepController &steps,
                             const PathLog            &path,
                             const bool                checkpointed);
-    /** The totals of a completed load path, in the log and run_summary.csv. */
-    void
-    finish_load_path(const LoadStepController &steps, const PathLog &path);
-    /** The work done since the load path began, failed attempts included. */
-    WorkCounters
-    work_on_path() const;
     /**
      * `Nonlinear solver/Predictor = extrapolation`: move the iterate by the
      * last accepted step's change of every unknown, scaled to @p step_size
@@ -396,84 +375,19 @@ namespace StabilizedLagrangian
     extrapolate_last_step(const double step_size);
     void
     apply_dirichlet_values(const double time);
-    void
-    print_step_line(const StepStatistics &stats, const double elapsed) const;
-    /**
-     * Print the block that ends a run's log: mesh and DoFs, load steps and
-     * Newton iterations, the wall time and its split, the peak memory and the
-     * error estimate.
-     */
-    void
-    print_run_summary(const unsigned int n_steps, const double wall_time) const;
-    /** Collective: the wall time of each timer section on the slowest rank (s). */
-    std::map<std::string, double>
-    slowest_sections() const;
-    /** Collective: the largest peak resident memory of the ranks (MiB). */
-    double
-    peak_memory() const;
-    /** run_summary.csv of the load path: @p path_work is the work it took, failed attempts included
-     */
-    void
-    write_run_summary(const unsigned int  n_steps,
-                      const double        wall_time,
-                      const WorkCounters &path_work) const;
+
+    // --- run_log.cc: the log of the load path and run_summary.csv (RunLog) ---
+    /** What the log of the load path reads of this problem, now. */
+    typename RunLog<dim>::View
+    run_log_view() const;
 
     /** The energy estimate η and the solution's energy norm, at an iterate (ErrorEstimator). */
     using EnergyEstimate = StabilizedLagrangian::EnergyEstimate;
 
-    // --- nested_loops.cc: the loops of seed §2.2: geometry → friction threshold → status ---
-    bool
-    solve_load_step(StepStatistics &stats);
-    bool
-    geometry_loop(StepStatistics &stats);
-    bool
-    friction_loop(StepStatistics &stats, const unsigned int geometry_iteration);
-    bool
-    status_loop(StepStatistics    &stats,
-                const unsigned int geometry_iteration,
-                const unsigned int friction_iteration);
-    unsigned int
-    update_statuses();
-    double
-    update_friction_thresholds();
-    double
-    relative_displacement_change(const TrilinosWrappers::MPI::Vector &previous) const;
-    /**
-     * `Nonlinear solver/Stopping = adaptive` for a loop of the nest (@p loop
-     * names it in the log): below_discretisation_error() for the energy of
-     * the displacement change of its last iteration, solution − @p previous,
-     * and @p relative_change, the measure of its own criterion.
-     */
-    /**
-     * The displacement a loop's change is measured from with `Stopping =
-     * adaptive` (a copy of the solution); an empty vector otherwise, which
-     * loop_stops_adaptively() does not read.
-     */
-    TrilinosWrappers::MPI::Vector
-    adaptive_reference() const;
-    bool
-    loop_stops_adaptively(const TrilinosWrappers::MPI::Vector &previous,
-                          const double                         relative_change,
-                          const char                          *loop,
-                          StepStatistics                      &stats);
-    /**
-     * Run @p solve with @p loop folded into the generalized Newton, then
-     * restore the method chosen: the fallback of a fixed point that cycles or
-     * does not converge in its iterations.
-     */
-    bool
-    fold_for_this_step(const Loop loop, const std::function<bool()> &solve);
-    /** The contact status χ of this rank's contact points. */
-    std::vector<unsigned char>
-    contact_statuses() const;
-    /**
-     * Collective: the first of the first @p end of @p seen equal to
-     * @p statuses on every rank, or @p end if none is.
-     */
-    unsigned int
-    first_equal(const std::vector<std::vector<unsigned char>> &seen,
-                const std::vector<unsigned char>              &statuses,
-                unsigned int                                   end) const;
+    // --- nested_loops.cc: the loops of seed §2.2 (NestedLoops) ---
+    /** What the nested loops read and write of this problem, and what they ask of it. */
+    typename NestedLoops<dim>::View
+    nested_loops_view();
 
     // --- newton.cc: the Newton iteration (NewtonSolver; its line search in
     // newton_line_search.cc, a singular system in newton_singular_system.cc) ---
@@ -1240,5 +1154,7 @@ namespace StabilizedLagrangian
     RunState state_list;
     /** the Newton iteration, called by the nested loops and the generalized Newton alike */
     NewtonSolver<dim> newton{newton_view()};
+    /** the loops of seed §2.2 around it: geometry → friction threshold → status */
+    NestedLoops<dim> nested_loops{nested_loops_view()};
   };
 } // namespace StabilizedLagrangian
