@@ -2,6 +2,7 @@
 
 #include <deal.II/grid/grid_tools.h>
 
+#include <stabilized_lagrangian/postprocessing/safe_files.h>
 #include <stabilized_lagrangian/solver/contact_problem.h>
 
 #include <functional>
@@ -156,6 +157,28 @@ namespace StabilizedLagrangian
     prm.print_parameters(used, ParameterHandler::PRM);
     parameters_used = used.str();
     register_run_state();
+  }
+
+  template <int dim>
+  bool
+  ContactProblem<dim>::run(const bool resume)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    run_directory   = output_parameters.directory;
+    // nothing is written before the input is known to be good: the mesh and
+    // the boundary names are checked by setup()
+    setup();
+    if (!resume)
+      solution_output.prepare_directory(output_directory);
+    const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
+    // the estimate of the restored (converged) state, which the cycle's row
+    // and the summary report if the checkpoint ended the cycle's load path
+    if (resume)
+      estimate_error(last_step);
+    if (root)
+      SafeFiles::write_atomically(run_directory + "/parameters.prm", parameters_used);
+    // the load path on each mesh of the adaptive refinement cycles
+    return refinement_cycles.run(first_cycle, resume);
   }
 
   template <int dim>

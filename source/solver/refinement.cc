@@ -131,72 +131,6 @@ namespace StabilizedLagrangian
                                               [this]() { setup_after_refinement(); }};
   }
 
-  template <int dim>
-  void
-  ContactProblem<dim>::write_cycle_errors(const std::string &directory) const
-  {
-    // ‖u_N − u_k‖ in the energy norm of the tangent of the last state
-    // (for a linear material, the energy norm itself)
-    FEValues<dim>                    fe_values(*fe_u,
-                            cell_quadrature,
-                            update_values | update_gradients | update_quadrature_points |
-                                update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int               n_q = cell_quadrature.size();
-    std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
-    std::vector<Tensor<1, dim>>      last_u(n_q), earlier_u(n_q); // axisymmetric: hoop strains
-    std::vector<double>              squared(earlier_cycles.size(), 0.);
-    compute_volume_fields(earlier_cycles.back());
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_gradients(earlier_cycles.back(), last);
-          fe_values[displacement].get_function_values(earlier_cycles.back(), last_u);
-          std::vector<Materials::Response<dim>> tangents(n_q);
-          for (unsigned int q = 0; q < n_q; ++q)
-            tangents[q] =
-                committed_response(cell,
-                                   q,
-                                   cell_quadrature.point(q),
-                                   last[q],
-                                   nullptr,
-                                   hoop_strain(fe_values.quadrature_point(q), last_u[q], last[q]));
-          for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
-            {
-              fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);
-              fe_values[displacement].get_function_values(earlier_cycles[k], earlier_u);
-              for (unsigned int q = 0; q < n_q; ++q)
-                {
-                  const Point<dim>    &x     = fe_values.quadrature_point(q);
-                  const Tensor<2, dim> error = last[q] - earlier[q];
-                  const double         hoop =
-                      hoop_strain(x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
-                  const auto &A = tangents[q];
-                  squared[k] +=
-                      (scalar_product(error, double_contract<2, 0, 3, 1>(A.tangent, error)) +
-                       hoop * (scalar_product(A.hoop_row + A.hoop_column, error) +
-                               A.hoop_hoop * hoop)) *
-                      fe_values.JxW(q) * radial_weight(x);
-                }
-            }
-        }
-    Utilities::MPI::sum(squared, mpi_communicator, squared);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    std::ostringstream file;
-    file << "cycle,displacement_dofs,estimated_error_sqrtNmm,error_against_last_cycle_sqrtNmm,"
-            "effectivity_index\n";
-    for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
-      {
-        const double error = std::sqrt(std::max(squared[k], 0.));
-        file << k << ',' << cycle_records[k].first << ',' << std::setprecision(8)
-             << cycle_records[k].second << ',' << error << ','
-             << (error > 0. ? cycle_records[k].second / error : 0.) << '\n';
-      }
-    SafeFiles::write_atomically(directory + "/cycle_errors.csv", file.str());
-  }
-
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                      \
@@ -205,8 +139,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::compute_reactions(StepStatistics &) const;                  \
   template StatisticsWriter::Supports         ContactProblem<dim>::statistics_supports() const;  \
   template TrilinosWrappers::MPI::Vector      ContactProblem<dim>::ghosted_displacement() const; \
-  template typename MeshRefinement<dim>::View ContactProblem<dim>::refinement_view();            \
-  template void ContactProblem<dim>::write_cycle_errors(const std::string &) const;
+  template typename MeshRefinement<dim>::View ContactProblem<dim>::refinement_view();
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

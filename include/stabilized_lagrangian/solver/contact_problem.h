@@ -47,11 +47,13 @@
 #include <stabilized_lagrangian/solver/inf_sup_test.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
 #include <stabilized_lagrangian/solver/linear_solver.h>
+#include <stabilized_lagrangian/solver/load_path.h>
 #include <stabilized_lagrangian/solver/load_step_controller.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
 #include <stabilized_lagrangian/solver/mesh_refinement.h>
 #include <stabilized_lagrangian/solver/nested_loops.h>
 #include <stabilized_lagrangian/solver/newton_solver.h>
+#include <stabilized_lagrangian/solver/refinement_cycles.h>
 #include <stabilized_lagrangian/solver/run_log.h>
 #include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
@@ -74,18 +76,21 @@ namespace StabilizedLagrangian
    * semi-multiplier Λ on Γc only, assembled as one monolithic system
    * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
    * phase, in source/solver/ (each section of the private part names its
-   * file): contact_problem.cc the mesh (built and held by BodyMesh,
+   * file): contact_problem.cc run(), the mesh (built and held by BodyMesh,
    * geometry/body_mesh.h) and the setup, setup_checks.cc what
    * the checks of the scene and the inf-sup test read and the start of a
    * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
    * contact_points.cc pairing and statuses, assembly.cc the Newton system,
-   * load_path.cc the load steps, run_log.cc the view the log reads,
+   * load_path.cc the view the load path reads, refinement_cycles.cc the view
+   * the refinement cycles read, run_log.cc the view the log reads,
    * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
    * the Newton iteration reads, converged_step.cc what an accepted step commits,
-   * refinement.cc the step's statistics and reactions, the adaptive
-   * refinement's view and the cycles' errors, run_state_list.cc the run's
+   * refinement.cc the step's statistics and reactions and the adaptive
+   * refinement's view, run_state_list.cc the run's
    * state (what a step cut restores and a checkpoint keeps), checkpoint.cc
-   * checkpoints. The loops of seed §2.2 are NestedLoops'
+   * checkpoints. The load path on one mesh is LoadPath's (solver/load_path.h),
+   * the adaptive refinement cycles around it RefinementCycles'
+   * (solver/refinement_cycles.h). The loops of seed §2.2 are NestedLoops'
    * (solver/nested_loops.h), the Newton iteration they call NewtonSolver's
    * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
    * newton_line_search.cc); the log of the load path and run_summary.csv are
@@ -113,7 +118,8 @@ namespace StabilizedLagrangian
                    const bool                           verbose = true);
 
     /**
-     * @brief Solve every load step (load_path.cc); returns false if a step could not be solved.
+     * @brief Solve the load path on each mesh of the refinement cycles
+     * (contact_problem.cc, RefinementCycles); returns false if a step could not be solved.
      * @param resume continue from the checkpoint in the output directory
      * (source/solver/checkpoint.cc) instead of starting from rest
      */
@@ -139,7 +145,7 @@ namespace StabilizedLagrangian
     bool
     stopped_at_wall_time_limit() const
     {
-      return wall_time_limit_reached;
+      return load_path.stopped_at_wall_time_limit();
     }
 
     /** @brief Mesh, DoFs, multiplier numbering, sparsity, contact points (contact_problem.cc). */
@@ -311,70 +317,20 @@ namespace StabilizedLagrangian
     ContactConditionsData<dim>
     conditions_data();
 
-    // --- load_path.cc: load steps, step cuts ---
-    /** What the refinement cycles took in all (an accuracy target reports it). */
-    struct CycleTotals
-    {
-      double        wall_time         = 0.;
-      unsigned long newton_iterations = 0;
-    };
-    /** Start refinement_cycles.csv (a fresh run with cycles). */
-    void
-    start_cycle_log(const bool resume) const;
-    /**
-     * The output directory of cycle @p k: the run's for the last cycle, else
-     * cycle-k/ below it (with an accuracy target every cycle's, until
-     * finish_targeted_cycles()).
-     */
+    // --- load_path.cc: the load path on one mesh (LoadPath); refinement_cycles.cc:
+    // the adaptive refinement cycles (RefinementCycles) ---
+    /** What the load path reads and writes of this problem, and what it asks of it. */
+    typename LoadPath<dim>::View
+    load_path_view();
+    /** What the refinement cycles read and write of this problem, and what they ask of it. */
+    typename RefinementCycles<dim>::View
+    refinement_cycles_view();
+    /** The output directory of cycle @p k (RefinementCycles::directory()). */
     std::string
-    cycle_directory(const unsigned int k) const;
-    /** Add the cycle to @p totals and its row to refinement_cycles.csv. */
-    void
-    record_cycle(const double wall_time, CycleTotals &totals) const;
-    /** Whether the last load step's estimates meet the accuracy targets. */
-    bool
-    targets_met() const;
-    /**
-     * After the cycles of an accuracy target: move the output of cycle @p last
-     * into the run's directory, report the cost and write target_error.csv.
-     */
-    void
-    finish_targeted_cycles(const unsigned int last, const CycleTotals &totals);
-    /**
-     * The whole load path on the current mesh, from rest, or with @p resumed
-     * from the state a checkpoint restored.
-     */
-    bool
-    solve_load_path(const bool resumed = false);
-    /** Open the output of a load path from rest; the next step is the nominal one. */
-    void
-    start_load_path(LoadStepController &steps);
-    /**
-     * After a failed attempt (the state restored): cut the step and return
-     * true, or report why the path stops and return false.
-     */
-    bool
-    cut_load_step(LoadStepController &steps);
-    /** Commit a converged step: its statistics, output and log line. */
-    void
-    record_load_step(StepStatistics &stats, PathLog &path, const Timer &step_clock);
-    /**
-     * Warn of a slow pace after the first step; at `Load stepping/Wall time
-     * limit`, checkpoint (unless @p checkpointed), report and return true.
-     */
-    bool
-    stop_at_wall_time_limit(const LoadStepController &steps,
-                            const PathLog            &path,
-                            const bool                checkpointed);
-    /**
-     * `Nonlinear solver/Predictor = extrapolation`: move the iterate by the
-     * last accepted step's change of every unknown, scaled to @p step_size
-     * (doc/formulation.md, "Predictor").
-     */
-    void
-    extrapolate_last_step(const double step_size);
-    void
-    apply_dirichlet_values(const double time);
+    cycle_directory(const unsigned int k) const
+    {
+      return refinement_cycles.directory(k);
+    }
 
     // --- run_log.cc: the log of the load path and run_summary.csv (RunLog) ---
     /** What the log of the load path reads of this problem, now. */
@@ -903,13 +859,6 @@ namespace StabilizedLagrangian
     /** What a refinement of the mesh reads and writes of this problem (MeshRefinement). */
     typename MeshRefinement<dim>::View
     refinement_view();
-    /**
-     * Write cycle_errors.csv into @p directory: each earlier cycle's
-     * displacement against the last one's (earlier_cycles), beside its error
-     * estimate.
-     */
-    void
-    write_cycle_errors(const std::string &directory) const;
 
     // --- error_estimator.cc: the residual error estimate (ErrorEstimator, doc/formulation.md,
     // "Error estimate") ---
@@ -974,9 +923,6 @@ namespace StabilizedLagrangian
     std::string output_directory;
     /** the process's memory before the mesh existed (MeshRefinement::refine checks growth) */
     Utilities::System::MemoryStats memory_at_start;
-    /** wall time since the problem was built, for `Load stepping/Wall time limit` */
-    Timer run_clock;
-    bool  wall_time_limit_reached = false;
     /** why the run must stop rather than cut the load step (empty: it may cut) */
     std::string unrecoverable_failure;
 
@@ -1156,5 +1102,9 @@ namespace StabilizedLagrangian
     NewtonSolver<dim> newton{newton_view()};
     /** the loops of seed §2.2 around it: geometry → friction threshold → status */
     NestedLoops<dim> nested_loops{nested_loops_view()};
+    /** the load path on the current mesh, and the clock of `Load stepping/Wall time limit` */
+    LoadPath<dim> load_path{load_path_view()};
+    /** the adaptive refinement cycles around it */
+    RefinementCycles<dim> refinement_cycles{refinement_cycles_view()};
   };
 } // namespace StabilizedLagrangian
