@@ -65,7 +65,7 @@ namespace StabilizedLagrangian
       contact_quadrature =
           body_mesh.face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
 
-    setup_constraints();
+    SystemConstraints<dim>(constraints_view()).make();
 
     reinit_system_vectors();
   }
@@ -159,13 +159,40 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
+  typename SystemConstraints<dim>::View
+  ContactProblem<dim>::constraints_view()
+  {
+    return typename SystemConstraints<dim>::View{triangulation,
+                                                 dof_handler_u,
+                                                 dof_handler_m,
+                                                 *fe_u,
+                                                 *fe_m,
+                                                 contact_parameters.fe_pair,
+                                                 fe_pair->multiplier_on_coarser_mesh(),
+                                                 locally_owned,
+                                                 locally_relevant,
+                                                 locally_owned_u,
+                                                 n_u,
+                                                 n_multipliers,
+                                                 chosen.contact_boundaries,
+                                                 *partner,
+                                                 any_friction(),
+                                                 axisymmetric,
+                                                 mpi_communicator,
+                                                 boundary_view(),
+                                                 boundary_conditions,
+                                                 hanging_constraints,
+                                                 newton_constraints};
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::follow_partner_dofs()
   {
     TimerOutput::Scope scope(timer, "sparsity pattern");
     locally_relevant.add_indices(partner->dofs());
     locally_relevant.compress();
-    setup_constraints();
+    SystemConstraints<dim>(constraints_view()).make();
     TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
     for (auto *vector : {&ghosted_solution, &step_start, &dirichlet_increment})
       if (vector->size() > 0)
