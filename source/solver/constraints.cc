@@ -11,7 +11,8 @@
 
 #include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
 #include <stabilized_lagrangian/contact/master_surface.h>
-#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/plugins.h>
+#include <stabilized_lagrangian/solver/system_constraints.h>
 
 #include <cmath>
 #include <limits>
@@ -48,86 +49,85 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::setup_constraints()
+  SystemConstraints<dim>::make() const
   {
-    hanging_constraints.clear();
-    hanging_constraints.reinit(locally_relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler_u, hanging_constraints);
-    add_multiplier_hanging_node_constraints(hanging_constraints);
-    if (fe_pair->multiplier_on_coarser_mesh())
-      add_multiplier_coarsening_constraints(hanging_constraints);
+    view.hanging_constraints.clear();
+    view.hanging_constraints.reinit(view.locally_relevant);
+    DoFTools::make_hanging_node_constraints(view.displacement_dofs, view.hanging_constraints);
+    add_multiplier_hanging_nodes(view.hanging_constraints);
+    if (view.multiplier_on_coarser_mesh)
+      add_multiplier_coarsening(view.hanging_constraints);
     // in 3D, chains of hanging nodes may end on another rank's DoFs
-    hanging_constraints.make_consistent_in_parallel(
-        locally_owned, locally_relevant, mpi_communicator);
-    hanging_constraints.close();
+    view.hanging_constraints.make_consistent_in_parallel(
+        view.locally_owned, view.locally_relevant, view.communicator);
+    view.hanging_constraints.close();
     find_point_dofs();
-    newton_constraints.clear();
-    newton_constraints.reinit(locally_relevant);
-    newton_constraints.merge(hanging_constraints);
-    add_homogeneous_dirichlet_constraints(newton_constraints);
-    for (const auto &condition : boundary_conditions)
-      condition->add_linked_constraints(boundary_view(), newton_constraints);
-    add_prescribed_slip_constraints(newton_constraints);
-    newton_constraints.make_consistent_in_parallel(
-        locally_owned, locally_relevant, mpi_communicator);
-    newton_constraints.close();
+    view.newton_constraints.clear();
+    view.newton_constraints.reinit(view.locally_relevant);
+    view.newton_constraints.merge(view.hanging_constraints);
+    add_homogeneous_dirichlet(view.newton_constraints);
+    for (const auto &condition : view.boundary_conditions)
+      condition->add_linked_constraints(view.boundary, view.newton_constraints);
+    add_prescribed_slip(view.newton_constraints);
+    view.newton_constraints.make_consistent_in_parallel(
+        view.locally_owned, view.locally_relevant, view.communicator);
+    view.newton_constraints.close();
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::add_multiplier_hanging_node_constraints(
-      AffineConstraints<double> &constraints) const
+  SystemConstraints<dim>::add_multiplier_hanging_nodes(AffineConstraints<double> &constraints) const
   {
     // Continuity of the multipliers at the hanging vertices (and edges) of Γc
     // in 3D: the constraints of the trace element on the whole skeleton,
     // restricted to the Γc block and shifted to the monolithic numbering. The
     // skeleton's other DoFs are never used.
     IndexSet relevant_m;
-    DoFTools::extract_locally_relevant_dofs(dof_handler_m, relevant_m);
+    DoFTools::extract_locally_relevant_dofs(view.multiplier_dofs, relevant_m);
     AffineConstraints<double> skeleton(relevant_m);
-    DoFTools::make_hanging_node_constraints(dof_handler_m, skeleton);
+    DoFTools::make_hanging_node_constraints(view.multiplier_dofs, skeleton);
     skeleton.close();
     for (const auto &line : skeleton.get_lines())
       {
-        if (line.index >= n_multipliers)
+        if (line.index >= view.n_multipliers)
           continue;
         // the contact boundary must not end inside a refined face: there a
         // hanging vertex of Γc depends on one off it, which has no multiplier
-        AssertThrow(std::all_of(line.entries.begin(),
-                                line.entries.end(),
-                                [&](const auto &entry) { return entry.first < n_multipliers; }),
-                    ExcMessage("Contact/Contact boundary ids: the contact boundary ends inside a "
-                               "refined face (some children of the face are on it, some not), "
-                               "so a multiplier at a hanging vertex would depend on one off the "
-                               "contact boundary. Give all the children of a refined face the "
-                               "same boundary id."));
-        constraints.add_line(n_u + line.index);
+        AssertThrow(
+            std::all_of(line.entries.begin(),
+                        line.entries.end(),
+                        [&](const auto &entry) { return entry.first < view.n_multipliers; }),
+            ExcMessage("Contact/Contact boundary ids: the contact boundary ends inside a "
+                       "refined face (some children of the face are on it, some not), "
+                       "so a multiplier at a hanging vertex would depend on one off the "
+                       "contact boundary. Give all the children of a refined face the "
+                       "same boundary id."));
+        constraints.add_line(view.n_u + line.index);
         for (const auto &[column, weight] : line.entries)
-          constraints.add_entry(n_u + line.index, n_u + column, weight);
+          constraints.add_entry(view.n_u + line.index, view.n_u + column, weight);
       }
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::add_multiplier_coarsening_constraints(
-      AffineConstraints<double> &constraints) const
+  SystemConstraints<dim>::add_multiplier_coarsening(AffineConstraints<double> &constraints) const
   {
     // The multiplier is continuous and multilinear on the parent of each
     // contact face: the values at the vertices of the children that are not
     // vertices of the parent are interpolated from the parent's vertices.
     for (const auto &line : constraints.get_lines())
-      if (line.index >= n_u)
-        throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+      if (line.index >= view.n_u)
+        throw InputError("Contact/Finite element pair = " + view.fe_pair_name +
                          " needs a contact boundary without hanging nodes.");
     constexpr unsigned int n_face_vertices = GeometryInfo<dim>::vertices_per_face;
-    const unsigned int     n_components    = fe_m->n_components();
-    for (const auto &cell : dof_handler_m.active_cell_iterators())
+    const unsigned int     n_components    = view.fe_m.n_components();
+    for (const auto &cell : view.multiplier_dofs.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
           if (is_contact_face(cell, f))
             {
               if (cell->level() == 0)
-                throw InputError("Contact/Finite element pair = " + contact_parameters.fe_pair +
+                throw InputError("Contact/Finite element pair = " + view.fe_pair_name +
                                  " needs the contact boundary refined at least once.");
               const auto coarse_face = cell->parent()->face(f);
               for (unsigned int c = 0; c < coarse_face->n_children(); ++c)
@@ -144,13 +144,15 @@ namespace StabilizedLagrangian
                           coarse[k] = coarse_face->vertex_dof_index(k, component);
                         // at the edge of Γc a parent face may be only partly in
                         // Γc: its fine nodes there stay free
-                        if (fine >= n_multipliers || constraints.is_constrained(n_u + fine) ||
-                            *std::max_element(coarse.begin(), coarse.end()) >= n_multipliers)
+                        if (fine >= view.n_multipliers ||
+                            constraints.is_constrained(view.n_u + fine) ||
+                            *std::max_element(coarse.begin(), coarse.end()) >= view.n_multipliers)
                           continue;
-                        constraints.add_line(n_u + fine);
+                        constraints.add_line(view.n_u + fine);
                         for (unsigned int k = 0; k < n_face_vertices; ++k)
                           if (weights[k] != 0.)
-                            constraints.add_entry(n_u + fine, n_u + coarse[k], weights[k]);
+                            constraints.add_entry(
+                                view.n_u + fine, view.n_u + coarse[k], weights[k]);
                       }
                   }
             }
@@ -158,23 +160,22 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::add_homogeneous_dirichlet_constraints(
-      AffineConstraints<double> &constraints) const
+  SystemConstraints<dim>::add_homogeneous_dirichlet(AffineConstraints<double> &constraints) const
   {
-    for (const auto &condition : boundary_conditions)
-      condition->add_homogeneous_constraints(boundary_view(), constraints);
-    if (axisymmetric)
-      add_axis_constraints(constraints);
+    for (const auto &condition : view.boundary_conditions)
+      condition->add_homogeneous_constraints(view.boundary, constraints);
+    if (view.axisymmetric)
+      add_axis(constraints);
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &constraints) const
+  SystemConstraints<dim>::add_axis(AffineConstraints<double> &constraints) const
   {
     // u_r = 0 on the axis r = 0: the faces lying on it, and single vertices
     // that touch it
     std::vector<types::global_dof_index> dofs;
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
+    for (const auto &cell : view.displacement_dofs.active_cell_iterators())
       if (!cell->is_artificial())
         {
           const double tolerance = 1e-10 * cell->diameter();
@@ -188,10 +189,10 @@ namespace StabilizedLagrangian
                 on_axis = on_axis && std::abs(face->vertex(v)[0]) < tolerance;
               if (!on_axis)
                 continue;
-              dofs.resize(fe_u->n_dofs_per_face(f));
+              dofs.resize(view.fe_u.n_dofs_per_face(f));
               face->get_dof_indices(dofs);
               for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (fe_u->face_system_to_component_index(i, f).first == 0 &&
+                if (view.fe_u.face_system_to_component_index(i, f).first == 0 &&
                     constraints.can_store_line(dofs[i]) && !constraints.is_constrained(dofs[i]))
                   constraints.add_line(dofs[i]);
             }
@@ -207,33 +208,33 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::find_point_dofs()
+  SystemConstraints<dim>::find_point_dofs() const
   {
-    for (const auto &condition : boundary_conditions)
-      condition->find_dofs(boundary_view(),
+    for (const auto &condition : view.boundary_conditions)
+      condition->find_dofs(view.boundary,
                            [this](const Point<dim> &point, const std::string &section) {
                              return vertex_dofs(point, section);
                            });
     // a vertex a point condition prescribes must not be one another links
-    for (const auto &condition : boundary_conditions)
-      for (const auto &other : boundary_conditions)
-        other->check_prescribed_vertex(boundary_view(), *condition);
+    for (const auto &condition : view.boundary_conditions)
+      for (const auto &other : view.boundary_conditions)
+        other->check_prescribed_vertex(view.boundary, *condition);
   }
 
   template <int dim>
   std::array<types::global_dof_index, dim>
-  ContactProblem<dim>::vertex_dofs(const Point<dim> &point, const std::string &section) const
+  SystemConstraints<dim>::vertex_dofs(const Point<dim> &point, const std::string &section) const
   {
     double size = 0.;
-    for (const auto &cell : triangulation.active_cell_iterators())
+    for (const auto &cell : view.triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         size = std::max(size, cell->diameter());
-    size                       = Utilities::MPI::max(size, mpi_communicator);
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
+    size                       = Utilities::MPI::max(size, view.communicator);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(view.communicator);
     double             nearest = std::numeric_limits<double>::max();
     std::array<types::global_dof_index, dim> dofs;
     Point<dim>                               vertex;
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
+    for (const auto &cell : view.displacement_dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int v : cell->vertex_indices())
           if (cell->vertex(v).distance(point) < nearest)
@@ -243,11 +244,11 @@ namespace StabilizedLagrangian
               for (unsigned int c = 0; c < dim; ++c)
                 dofs[c] = cell->vertex_dof_index(v, c);
             }
-    const double       closest = Utilities::MPI::min(nearest, mpi_communicator);
+    const double       closest = Utilities::MPI::min(nearest, view.communicator);
     const unsigned int owner   = Utilities::MPI::min(
-        nearest == closest ? rank : numbers::invalid_unsigned_int, mpi_communicator);
-    dofs   = Utilities::MPI::broadcast(mpi_communicator, dofs, owner);
-    vertex = Utilities::MPI::broadcast(mpi_communicator, vertex, owner);
+        nearest == closest ? rank : numbers::invalid_unsigned_int, view.communicator);
+    dofs   = Utilities::MPI::broadcast(view.communicator, dofs, owner);
+    vertex = Utilities::MPI::broadcast(view.communicator, vertex, owner);
     // (1e-6 of the largest cell: a point written with 6 significant digits)
     if (closest > 1e-6 * size)
       {
@@ -258,8 +259,9 @@ namespace StabilizedLagrangian
       }
     bool hanging = false;
     for (unsigned int c = 0; c < dim; ++c)
-      hanging |= locally_owned_u.is_element(dofs[c]) && hanging_constraints.is_constrained(dofs[c]);
-    if (Utilities::MPI::logical_or(hanging, mpi_communicator))
+      hanging |= view.locally_owned_u.is_element(dofs[c]) &&
+                 view.hanging_constraints.is_constrained(dofs[c]);
+    if (Utilities::MPI::logical_or(hanging, view.communicator))
       throw InputError(section +
                        "/Point: the vertex there hangs on a refined neighbour; put the condition "
                        "on a vertex of the coarser cells.");
@@ -268,22 +270,25 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const
+  SystemConstraints<dim>::add_prescribed_slip(AffineConstraints<double> &constraints) const
   {
-    if (!any_friction() || !partner->is_flat())
+    if (!view.any_friction || !view.partner.is_flat())
       return;
-    const auto tangents = partner->project(Point<dim>()).tangents;
+    const auto tangents = view.partner.project(Point<dim>()).tangents;
     // the vertex DoFs of the multiplier element by component (0: λ_n, 1..: Λ)
-    std::vector<unsigned int> m_component(fe_m->n_dofs_per_vertex());
+    std::vector<unsigned int> m_component(view.fe_m.n_dofs_per_vertex());
     for (unsigned int i = 0; i < m_component.size(); ++i)
-      m_component[i] = fe_m->system_to_component_index(i).first;
-    for (const auto &cell : dof_handler_u.active_cell_iterators())
+      m_component[i] = view.fe_m.system_to_component_index(i).first;
+    for (const auto &cell : view.displacement_dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
           if (is_contact_face(cell, f))
             {
-              const auto face   = cell->face(f);
-              const auto face_m = multiplier_cell(cell)->face(f);
+              const auto face = cell->face(f);
+              // the same cell of the multiplier DoFHandler
+              const typename DoFHandler<dim>::active_cell_iterator cell_m(
+                  &view.triangulation, cell->level(), cell->index(), &view.multiplier_dofs);
+              const auto face_m = cell_m->face(f);
               for (const unsigned int v : face->vertex_indices())
                 for (unsigned int a = 0; a < dim - 1; ++a)
                   {
@@ -294,14 +299,14 @@ namespace StabilizedLagrangian
                         {
                           const auto u = face->vertex_dof_index(v, d);
                           prescribed &= constraints.is_constrained(u) &&
-                                        !hanging_constraints.is_constrained(u);
+                                        !view.hanging_constraints.is_constrained(u);
                         }
                     if (!prescribed)
                       continue;
                     for (unsigned int i = 0; i < m_component.size(); ++i)
                       if (m_component[i] == a + 1)
                         {
-                          const auto m = n_u + face_m->vertex_dof_index(v, i);
+                          const auto m = view.n_u + face_m->vertex_dof_index(v, i);
                           if (!constraints.is_constrained(m))
                             constraints.add_line(m);
                         }
@@ -309,24 +314,6 @@ namespace StabilizedLagrangian
             }
   }
 
-  // Explicit instantiation of the members defined in this file (the class
-  // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                       \
-  template void ContactProblem<dim>::setup_constraints();                                         \
-  template void ContactProblem<dim>::add_multiplier_hanging_node_constraints(                     \
-      AffineConstraints<double> &) const;                                                         \
-  template void ContactProblem<dim>::add_multiplier_coarsening_constraints(                       \
-      AffineConstraints<double> &) const;                                                         \
-  template void ContactProblem<dim>::add_homogeneous_dirichlet_constraints(                       \
-      AffineConstraints<double> &) const;                                                         \
-  template void ContactProblem<dim>::add_axis_constraints(AffineConstraints<double> &) const;     \
-  template void ContactProblem<dim>::find_point_dofs();                                           \
-  template std::array<types::global_dof_index, dim> ContactProblem<dim>::vertex_dofs(             \
-      const Point<dim> &, const std::string &) const;                                             \
-  template void ContactProblem<dim>::add_prescribed_slip_constraints(AffineConstraints<double> &) \
-      const;
-
-  SL_INSTANTIATE(2)
-  SL_INSTANTIATE(3)
-#undef SL_INSTANTIATE
+  template class SystemConstraints<2>;
+  template class SystemConstraints<3>;
 } // namespace StabilizedLagrangian

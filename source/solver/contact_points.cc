@@ -22,7 +22,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
-          if (is_contact_face(cell, f))
+          if (spaces.is_contact_face(cell, f))
             {
               contact_faces.push_back(ContactFace{cell, f, n_points, nullptr, nullptr, nullptr});
               n_points += contact_quadrature.size();

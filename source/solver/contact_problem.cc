@@ -126,7 +126,9 @@ namespace StabilizedLagrangian
                n_u,
                n_multipliers,
                step_start,
-               axisymmetric}
+               axisymmetric,
+               chosen.contact_boundaries,
+               chosen.master_boundaries}
       , solution_output(mpi_communicator, output_parameters)
   {
     Utilities::System::get_memory_stats(memory_at_start);

@@ -77,8 +77,10 @@ namespace StabilizedLagrangian
     // (computed for a VTU only: they refresh the F-bar fields of compute_volume_fields())
     const CellAverages averages = solution_output.writes_vtu() ? cell_averages(u) : CellAverages();
     const std::function<bool(const typename Triangulation<dim>::cell_iterator &, unsigned int)>
-        on_contact_boundary = [this](const typename Triangulation<dim>::cell_iterator &cell,
-                                     const unsigned int f) { return is_contact_face(cell, f); };
+        on_contact_boundary =
+            [this](const typename Triangulation<dim>::cell_iterator &cell, const unsigned int f) {
+              return spaces.is_contact_face(cell, f);
+            };
     solution_output.write(step,
                           t,
                           {triangulation,

@@ -18,13 +18,61 @@
 
 namespace StabilizedLagrangian
 {
+  namespace
+  {
+    /**
+     * Number the multiplier DoFs of @p dof_handler_m on Γc first, [0, N_Γ),
+     * rank after rank; returns N_Γ. The others (on the rest of the skeleton)
+     * are never used.
+     */
+    template <int dim>
+    types::global_dof_index
+    number_contact_multipliers_first(DoFHandler<dim>          &dof_handler_m,
+                                     const ContactSpaces<dim> &spaces,
+                                     const MPI_Comm            mpi_communicator)
+    {
+      std::set<types::global_dof_index> on_contact;
+      spaces.for_each_contact_multiplier_dof(
+          [&](const types::global_dof_index dof, unsigned int) { on_contact.insert(dof); });
+
+      const IndexSet          owned           = dof_handler_m.locally_owned_dofs();
+      types::global_dof_index n_contact_local = 0;
+      for (const auto dof : on_contact)
+        if (owned.is_element(dof))
+          ++n_contact_local;
+      const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
+
+      types::global_dof_index                 contact_offset = 0, other_offset = 0;
+      const std::array<unsigned long long, 2> local  = {{n_contact_local, n_other_local}};
+      std::array<unsigned long long, 2>       prefix = {{0, 0}};
+      MPI_Exscan(local.data(), prefix.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi_communicator);
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
+        {
+          contact_offset = prefix[0];
+          other_offset   = prefix[1];
+        }
+      const types::global_dof_index n_multipliers =
+          Utilities::MPI::sum(n_contact_local, mpi_communicator);
+
+      std::vector<types::global_dof_index> new_numbers(owned.n_elements());
+      types::global_dof_index              next_contact = contact_offset;
+      types::global_dof_index              next_other   = n_multipliers + other_offset;
+      for (unsigned int k = 0; k < owned.n_elements(); ++k)
+        new_numbers[k] =
+            on_contact.count(owned.nth_index_in_set(k)) ? next_contact++ : next_other++;
+      dof_handler_m.renumber_dofs(new_numbers);
+      return n_multipliers;
+    }
+
+  } // namespace
+
   template <int dim>
   void
   ContactProblem<dim>::setup_dofs()
   {
     dof_handler_u.distribute_dofs(*fe_u);
     dof_handler_m.distribute_dofs(*fe_m);
-    setup_multiplier_numbering();
+    n_multipliers = number_contact_multipliers_first(dof_handler_m, spaces, mpi_communicator);
 
     n_u             = dof_handler_u.n_dofs();
     locally_owned_u = dof_handler_u.locally_owned_dofs();
@@ -65,7 +113,7 @@ namespace StabilizedLagrangian
       contact_quadrature =
           body_mesh.face_nodes(std::max({fe_pair->multiplier_degree(), u_degree, 1u}));
 
-    setup_constraints();
+    SystemConstraints<dim>(constraints_view()).make();
 
     reinit_system_vectors();
   }
@@ -83,7 +131,7 @@ namespace StabilizedLagrangian
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned())
             for (const unsigned int f : cell->face_indices())
-              if (is_slave_or_master_face(cell, f))
+              if (spaces.is_slave_or_master_face(cell, f))
                 search_distance = std::max(search_distance, 2. * cell->face(f)->diameter());
         search_distance = Utilities::MPI::max(search_distance, mpi_communicator);
       }
@@ -129,7 +177,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
-          if (is_contact_face(cell, f))
+          if (spaces.is_contact_face(cell, f))
             {
               const auto              face = cell->face(f);
               std::vector<Point<dim>> vertices;
@@ -159,13 +207,40 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
+  typename SystemConstraints<dim>::View
+  ContactProblem<dim>::constraints_view()
+  {
+    return typename SystemConstraints<dim>::View{triangulation,
+                                                 dof_handler_u,
+                                                 dof_handler_m,
+                                                 *fe_u,
+                                                 *fe_m,
+                                                 contact_parameters.fe_pair,
+                                                 fe_pair->multiplier_on_coarser_mesh(),
+                                                 locally_owned,
+                                                 locally_relevant,
+                                                 locally_owned_u,
+                                                 n_u,
+                                                 n_multipliers,
+                                                 chosen.contact_boundaries,
+                                                 *partner,
+                                                 any_friction(),
+                                                 axisymmetric,
+                                                 mpi_communicator,
+                                                 boundary_view(),
+                                                 boundary_conditions,
+                                                 hanging_constraints,
+                                                 newton_constraints};
+  }
+
+  template <int dim>
   void
   ContactProblem<dim>::follow_partner_dofs()
   {
     TimerOutput::Scope scope(timer, "sparsity pattern");
     locally_relevant.add_indices(partner->dofs());
     locally_relevant.compress();
-    setup_constraints();
+    SystemConstraints<dim>(constraints_view()).make();
     TrilinosWrappers::MPI::Vector owned(locally_owned, mpi_communicator);
     for (auto *vector : {&ghosted_solution, &step_start, &dirichlet_increment})
       if (vector->size() > 0)
@@ -181,50 +256,15 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  void
-  ContactProblem<dim>::setup_multiplier_numbering()
-  {
-    // Number the multiplier DoFs on Γc first, [0, N_Γ), rank after rank; the
-    // others (on the rest of the skeleton) are never used.
-    std::set<types::global_dof_index> on_contact;
-    for_each_contact_multiplier_dof(
-        [&](const types::global_dof_index dof, unsigned int) { on_contact.insert(dof); });
-
-    const IndexSet          owned           = dof_handler_m.locally_owned_dofs();
-    types::global_dof_index n_contact_local = 0;
-    for (const auto dof : on_contact)
-      if (owned.is_element(dof))
-        ++n_contact_local;
-    const types::global_dof_index n_other_local = owned.n_elements() - n_contact_local;
-
-    types::global_dof_index                 contact_offset = 0, other_offset = 0;
-    const std::array<unsigned long long, 2> local  = {{n_contact_local, n_other_local}};
-    std::array<unsigned long long, 2>       prefix = {{0, 0}};
-    MPI_Exscan(local.data(), prefix.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi_communicator);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) > 0)
-      {
-        contact_offset = prefix[0];
-        other_offset   = prefix[1];
-      }
-    n_multipliers = Utilities::MPI::sum(n_contact_local, mpi_communicator);
-
-    std::vector<types::global_dof_index> new_numbers(owned.n_elements());
-    types::global_dof_index              next_contact = contact_offset;
-    types::global_dof_index              next_other   = n_multipliers + other_offset;
-    for (unsigned int k = 0; k < owned.n_elements(); ++k)
-      new_numbers[k] = on_contact.count(owned.nth_index_in_set(k)) ? next_contact++ : next_other++;
-    dof_handler_m.renumber_dofs(new_numbers);
-  }
-
-  template <int dim>
   std::vector<std::pair<types::global_dof_index, unsigned int>>
   ContactProblem<dim>::locally_owned_multiplier_components() const
   {
     std::map<types::global_dof_index, unsigned int> components;
-    for_each_contact_multiplier_dof([&](const types::global_dof_index dof, const unsigned int i) {
-      if (locally_owned.is_element(n_u + dof))
-        components[n_u + dof] = fe_m->system_to_component_index(i).first;
-    });
+    spaces.for_each_contact_multiplier_dof(
+        [&](const types::global_dof_index dof, const unsigned int i) {
+          if (locally_owned.is_element(n_u + dof))
+            components[n_u + dof] = fe_m->system_to_component_index(i).first;
+        });
     return {components.begin(), components.end()};
   }
 
@@ -364,7 +404,6 @@ namespace StabilizedLagrangian
       const TrilinosWrappers::MPI::Vector *) const;                                    \
   template void ContactProblem<dim>::update_partner_configuration();                            \
   template void ContactProblem<dim>::follow_partner_dofs();                                     \
-  template void ContactProblem<dim>::setup_multiplier_numbering();                              \
   template std::vector<std::pair<types::global_dof_index, unsigned int>>                        \
                 ContactProblem<dim>::locally_owned_multiplier_components() const;               \
   template void ContactProblem<dim>::setup_sparsity();                                          \

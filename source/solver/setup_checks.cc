@@ -33,7 +33,7 @@ namespace StabilizedLagrangian
 
   template <int dim>
   typename InfSupTest<dim>::View
-  ContactProblem<dim>::inf_sup_view() const
+  ContactProblem<dim>::inf_sup_view()
   {
     return {mpi_communicator,
             dof_handler_u,
@@ -45,7 +45,7 @@ namespace StabilizedLagrangian
             // a Gauss rule exact for both
             face_gauss(std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1),
             [this](AffineConstraints<double> &constraints) {
-              add_homogeneous_dirichlet_constraints(constraints);
+              SystemConstraints<dim>(constraints_view()).add_homogeneous_dirichlet(constraints);
             },
             owned_multiplier_components,
             hanging_constraints,
@@ -115,7 +115,7 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                     \
   template typename SceneChecks<dim>::View ContactProblem<dim>::scene_view() const;             \
-  template typename InfSupTest<dim>::View  ContactProblem<dim>::inf_sup_view() const;           \
+  template typename InfSupTest<dim>::View  ContactProblem<dim>::inf_sup_view();                 \
   template void                            ContactProblem<dim>::run_inf_sup_test(unsigned int); \
   template unsigned int                    ContactProblem<dim>::points_in_contact() const;      \
   template void                            ContactProblem<dim>::close_nearest_points();

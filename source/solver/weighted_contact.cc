@@ -35,9 +35,9 @@ namespace StabilizedLagrangian
         *fe_m, contact_quadrature, update_values | update_JxW_values | update_quadrature_points);
     for (auto &face : contact_faces)
       {
-        values.reinit(multiplier_cell(face.cell), face.face_no);
+        values.reinit(spaces.multiplier_cell(face.cell), face.face_no);
         // the face's nodes: λ_n's shape functions, ascending base index
-        const std::vector<unsigned int> &local = multiplier_face_dofs(face.face_no);
+        const std::vector<unsigned int> &local = spaces.multiplier_face_dofs(face.face_no);
         std::vector<unsigned int>        node_shapes;
         for (const auto &[base, node] : multiplier_nodes(
                  *fe_m, local, std::vector<types::global_dof_index>(local.begin(), local.end())))
@@ -180,7 +180,7 @@ namespace StabilizedLagrangian
         loops,
         negligible_pressure,
         [this]() { return static_cast<unsigned int>(contact_zones.size()); },
-        [this](const auto &f) { for_each_contact_multiplier_face(f); }};
+        [this](const auto &f) { spaces.for_each_contact_multiplier_face(f); }};
   }
 
   template <int dim>

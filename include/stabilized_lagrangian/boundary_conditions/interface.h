@@ -112,7 +112,7 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The DoFs of the vertex at a point, per component; errors name the
-     * condition's subsection (ContactProblem::vertex_dofs).
+     * condition's subsection (SystemConstraints::vertex_dofs).
      */
     template <int dim>
     using VertexDoFs = std::function<std::array<types::global_dof_index, dim>(

@@ -16,6 +16,7 @@
 #include <stabilized_lagrangian/contact/pairing.h>
 
 #include <memory>
+#include <set>
 #include <vector>
 
 /**
@@ -75,6 +76,9 @@ namespace StabilizedLagrangian
     /** relevant: the solution at the step start */
     const TrilinosWrappers::MPI::Vector &step_start;
     const bool                          &axisymmetric;
+    /** the boundary ids of Γc, and of a second body's master surface (ChosenParameters) */
+    const std::set<types::boundary_id> &contact_boundaries;
+    const std::set<types::boundary_id> &master_boundaries;
 
     /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
     typename DoFHandler<dim>::active_cell_iterator
@@ -82,6 +86,62 @@ namespace StabilizedLagrangian
     {
       return typename DoFHandler<dim>::active_cell_iterator(
           &dof_handler_m.get_triangulation(), cell->level(), cell->index(), &dof_handler_m);
+    }
+    /** Whether face @p f of @p cell lies on the contact boundary Γc. */
+    template <typename CellIterator>
+    bool
+    is_contact_face(const CellIterator &cell, const unsigned int f) const
+    {
+      return cell->face(f)->at_boundary() &&
+             contact_boundaries.count(cell->face(f)->boundary_id()) > 0;
+    }
+    /** Whether face @p f of @p cell lies on Γc or on the master surface of a second body. */
+    template <typename CellIterator>
+    bool
+    is_slave_or_master_face(const CellIterator &cell, const unsigned int f) const
+    {
+      return is_contact_face(cell, f) ||
+             (cell->face(f)->at_boundary() &&
+              master_boundaries.count(cell->face(f)->boundary_id()) > 0);
+    }
+    /** The multiplier element's DoFs on face @p face of a cell, ascending. */
+    const std::vector<unsigned int> &
+    multiplier_face_dofs(const unsigned int face) const
+    {
+      return multiplier_dofs_on_face[face];
+    }
+    /**
+     * Call f(dofs, face) for each contact face of the non-artificial cells,
+     * with the multiplier DoFs of its cell (multiplier numbering).
+     */
+    template <typename Function>
+    void
+    for_each_contact_multiplier_face(const Function &f) const
+    {
+      std::vector<types::global_dof_index> dofs(fe_m->n_dofs_per_cell());
+      for (const auto &cell : dof_handler_m.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int face : cell->face_indices())
+            if (is_contact_face(cell, face))
+              {
+                cell->get_dof_indices(dofs);
+                f(dofs, face);
+              }
+    }
+    /**
+     * Call f(dof, i) for each multiplier DoF on a contact face of the
+     * non-artificial cells, in the multiplier DoFHandler's numbering (i: its
+     * index in the cell; a DoF of several faces is visited once per face).
+     */
+    template <typename Function>
+    void
+    for_each_contact_multiplier_dof(const Function &f) const
+    {
+      for_each_contact_multiplier_face(
+          [&](const std::vector<types::global_dof_index> &dofs, const unsigned int face) {
+            for (const unsigned int i : multiplier_face_dofs(face))
+              f(dofs[i], i);
+          });
     }
     /**
      * The measure of the model at @p x: 2πr (r = x₁) in an axisymmetric model,

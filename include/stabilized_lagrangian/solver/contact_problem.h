@@ -58,6 +58,7 @@
 #include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
+#include <stabilized_lagrangian/solver/system_constraints.h>
 
 #include <algorithm>
 #include <functional>
@@ -79,10 +80,10 @@ namespace StabilizedLagrangian
    * file): contact_problem.cc run(), the mesh (built and held by BodyMesh,
    * geometry/body_mesh.h) and the setup, setup_checks.cc what
    * the checks of the scene and the inf-sup test read and the start of a
-   * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints,
-   * contact_points.cc pairing and statuses, assembly.cc the Newton system,
-   * load_path.cc the view the load path reads, refinement_cycles.cc the view
-   * the refinement cycles read, run_log.cc the view the log reads,
+   * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints
+   * (SystemConstraints), contact_points.cc pairing and statuses, assembly.cc the
+   * Newton system, load_path.cc the view the load path reads, refinement_cycles.cc
+   * the view the refinement cycles read, run_log.cc the view the log reads,
    * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
    * the Newton iteration reads, converged_step.cc what an accepted step commits,
    * refinement.cc the step's statistics and reactions and the adaptive
@@ -466,7 +467,7 @@ namespace StabilizedLagrangian
     scene_view() const;
     /** The discretisation as InfSupTest reads it, now. */
     typename InfSupTest<dim>::View
-    inf_sup_view() const;
+    inf_sup_view();
     /** Collective: the number of contact points whose status χ is contact. */
     unsigned int
     points_in_contact() const;
@@ -474,7 +475,7 @@ namespace StabilizedLagrangian
     void
     close_nearest_points();
 
-    // --- dofs.cc: DoFs, multiplier numbering, sparsity; constraints.cc: the constraints ---
+    // --- dofs.cc: DoFs, multiplier numbering, sparsity; the constraints in SystemConstraints ---
     void
     setup_dofs();
     /**
@@ -486,9 +487,10 @@ namespace StabilizedLagrangian
     /** The vectors of the Newton system on this mesh's DoFs; the scaling of the residual rows. */
     void
     reinit_system_vectors();
-    /** The hanging-node and Newton constraints on the locally relevant DoFs (collective). */
-    void
-    setup_constraints();
+    /** What the constraints of the Newton system read and write of this problem
+     * (SystemConstraints). */
+    typename SystemConstraints<dim>::View
+    constraints_view();
     /**
      * The AMG's near-null space over the displacement's locally owned DoFs,
      * in their order: the dim translations, then with `AMG near-null space =
@@ -517,90 +519,6 @@ namespace StabilizedLagrangian
      */
     void
     follow_partner_dofs();
-    void
-    setup_multiplier_numbering();
-    /** The cell of the multiplier DoFHandler that is @p cell of the displacement one. */
-    typename DoFHandler<dim>::active_cell_iterator
-    multiplier_cell(const typename DoFHandler<dim>::active_cell_iterator &cell) const
-    {
-      return spaces.multiplier_cell(cell);
-    }
-    /** Whether face @p f of @p cell lies on the contact boundary Γc. */
-    template <typename CellIterator>
-    bool
-    is_contact_face(const CellIterator &cell, const unsigned int f) const
-    {
-      return cell->face(f)->at_boundary() &&
-             chosen.contact_boundaries.count(cell->face(f)->boundary_id()) > 0;
-    }
-    /** Whether face @p f of @p cell lies on Γc or on the master surface of a second body. */
-    template <typename CellIterator>
-    bool
-    is_slave_or_master_face(const CellIterator &cell, const unsigned int f) const
-    {
-      return is_contact_face(cell, f) ||
-             (cell->face(f)->at_boundary() &&
-              chosen.master_boundaries.count(cell->face(f)->boundary_id()) > 0);
-    }
-    /**
-     * Call f(dof, i) for each multiplier DoF on a contact face of the
-     * non-artificial cells, in the multiplier DoFHandler's numbering (i: its
-     * index in the cell; a DoF of several faces is visited once per face).
-     */
-    template <typename Function>
-    void
-    for_each_contact_multiplier_dof(const Function &f) const
-    {
-      for_each_contact_multiplier_face(
-          [&](const std::vector<types::global_dof_index> &dofs, const unsigned int face) {
-            for (const unsigned int i : multiplier_face_dofs(face))
-              f(dofs[i], i);
-          });
-    }
-    /**
-     * Call f(dofs, face) for each contact face of the non-artificial cells,
-     * with the multiplier DoFs of its cell (multiplier numbering).
-     */
-    template <typename Function>
-    void
-    for_each_contact_multiplier_face(const Function &f) const
-    {
-      std::vector<types::global_dof_index> dofs(fe_m->n_dofs_per_cell());
-      for (const auto &cell : dof_handler_m.active_cell_iterators())
-        if (!cell->is_artificial())
-          for (const unsigned int face : cell->face_indices())
-            if (is_contact_face(cell, face))
-              {
-                cell->get_dof_indices(dofs);
-                f(dofs, face);
-              }
-    }
-    /** The multiplier element's DoFs on face @p face of a cell, ascending (setup_dofs()). */
-    const std::vector<unsigned int> &
-    multiplier_face_dofs(const unsigned int face) const
-    {
-      return multiplier_dofs_on_face[face];
-    }
-    /** Multiplier continuity at hanging vertices of Γc (3D), in the monolithic numbering. */
-    void
-    add_multiplier_hanging_node_constraints(AffineConstraints<double> &constraints) const;
-    /**
-     * Λ_α = 0 at the vertices of Γc whose displacement along the (fixed) tangent
-     * t_α of a plane obstacle is prescribed: there the stick condition leaves
-     * Λ_α undetermined (the Dirichlet reaction carries the friction) and the
-     * Newton system would be singular. On a symmetry plane, 0 is the symmetric value.
-     */
-    void
-    add_prescribed_slip_constraints(AffineConstraints<double> &constraints) const;
-    /** The multiplier of a coarse-mesh pair: multilinear on the parents of the contact faces. */
-    void
-    add_multiplier_coarsening_constraints(AffineConstraints<double> &constraints) const;
-    /** u_i = 0 on the Dirichlet boundaries (the Newton update's constraints). */
-    void
-    add_homogeneous_dirichlet_constraints(AffineConstraints<double> &constraints) const;
-    /** Axisymmetric: u_r = 0 at the DoFs on the axis r = 0. */
-    void
-    add_axis_constraints(AffineConstraints<double> &constraints) const;
     /** What the boundary conditions read of the problem, now. */
     BoundaryConditions::Problem<dim>
     boundary_view() const;
@@ -1015,16 +933,6 @@ namespace StabilizedLagrangian
     TrilinosWrappers::MPI::Vector contact_residual;
     /** owned: the nodal external (Neumann, spring, plate) forces of the last assembly */
     TrilinosWrappers::MPI::Vector external_force;
-    /**
-     * The vertices of the point loads and point Dirichlet conditions: the
-     * vertex of the mesh nearest to each Point, refused when it is not at the
-     * point (to 1e-6 of the body's size) or hangs.
-     */
-    void
-    find_point_dofs();
-    /** The DoFs of the vertex at @p point, per component (@p section names it in errors). */
-    std::array<types::global_dof_index, dim>
-    vertex_dofs(const Point<dim> &point, const std::string &section) const;
     /**
      * owned, multiplier rows: the weight that turns the row's residual into a
      * length, ∫|ψ_j| on the λ_n rows and ∫|ψ_j| (χ_f s + (1 − χ_f) r_t) on the Λ rows
