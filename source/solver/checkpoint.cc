@@ -485,7 +485,11 @@ namespace StabilizedLagrangian
           if (root && cycles_bytes > 0)
             SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
           output_directory = cycle_directory(cycle);
-          statistics.resume(output_directory, dim, root, statistics_supports(), statistics_state);
+          statistics.resume(output_directory,
+                            dim,
+                            root,
+                            StepStatisticsCollector<dim>(statistics_view()).supports(),
+                            statistics_state);
           solution_output.write_pvd(output_directory);
         }
       catch (const std::exception &e)

@@ -301,9 +301,11 @@ namespace StabilizedLagrangian
         newton,
         [this]() { update_ghosts(); },
         [this]() { return boundary_view(); },
-        [this]() { return statistics_supports(); },
+        [this]() { return StepStatisticsCollector<dim>(statistics_view()).supports(); },
         [this](const unsigned int step, const double t) { commit_converged_step(step, t); },
-        [this](StepStatistics &stats) { compute_contact_statistics(stats); },
+        [this](StepStatistics &stats) {
+          StepStatisticsCollector<dim>(statistics_view()).collect(stats);
+        },
         [this](StepStatistics &stats) { estimate_error(stats); },
         [this]() { write_checkpoint(); },
         [this]() { return run_log_view(); }};

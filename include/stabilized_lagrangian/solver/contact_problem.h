@@ -58,6 +58,7 @@
 #include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
+#include <stabilized_lagrangian/solver/step_statistics_collector.h>
 #include <stabilized_lagrangian/solver/system_constraints.h>
 
 #include <algorithm>
@@ -86,8 +87,8 @@ namespace StabilizedLagrangian
    * the view the refinement cycles read, run_log.cc the view the log reads,
    * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
    * the Newton iteration reads, converged_step.cc what an accepted step commits,
-   * refinement.cc the step's statistics and reactions and the adaptive
-   * refinement's view, run_state_list.cc the run's
+   * refinement.cc the views of the step's statistics
+   * (StepStatisticsCollector) and of the adaptive refinement, run_state_list.cc the run's
    * state (what a step cut restores and a checkpoint keeps), checkpoint.cc
    * checkpoints. The load path on one mesh is LoadPath's (solver/load_path.h),
    * the adaptive refinement cycles around it RefinementCycles'
@@ -737,16 +738,11 @@ namespace StabilizedLagrangian
                          const std::vector<types::global_dof_index> &dofs,
                          const bool                                  assemble_matrix);
 
-    // --- refinement.cc: contact statistics of a step, the view of the adaptive refinement ---
-    /** Forces and point counts of a converged step; records the active set. */
-    void
-    compute_contact_statistics(StepStatistics &stats);
-    /**
-     * The boundary ids with a Dirichlet condition or springs, each once: the
-     * Dirichlet ones in the order of their subsections, then the springs'.
-     */
-    std::vector<types::boundary_id>
-    supported_boundaries() const;
+    // --- refinement.cc: the view of a step's statistics (StepStatisticsCollector) and of the
+    // adaptive refinement ---
+    /** What the statistics of a converged step read and write of this problem. */
+    typename StepStatisticsCollector<dim>::View
+    statistics_view();
     /**
      * The unit of forces: N, or per unit thickness in plane strain, N/mm
      * (@p column: as a column name's suffix, N_per_mm).
@@ -758,19 +754,6 @@ namespace StabilizedLagrangian
         return "N";
       return column ? "N_per_mm" : "N/mm";
     }
-    /** The supports statistics.csv has columns for: the supported boundaries, the conditions' own.
-     */
-    StatisticsWriter::Supports
-    statistics_supports() const;
-    /**
-     * The reaction of each supported boundary of the converged state, into
-     * stats.reactions: the sum over its constrained DoFs of the residual
-     * without constraints (internal minus applied forces plus the contact
-     * terms; a DoF on two such boundaries counts for the first), plus the
-     * springs' force ∫ −K (u − u_0); and the conditions' own statistics.
-     */
-    void
-    compute_reactions(StepStatistics &stats) const;
     /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
     TrilinosWrappers::MPI::Vector
     ghosted_displacement() const;
