@@ -146,7 +146,7 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
     std::vector<Tensor<1, dim>>      last_u(n_q), earlier_u(n_q); // axisymmetric: hoop strains
     std::vector<double>              squared(earlier_cycles.size(), 0.);
-    compute_volume_fields(earlier_cycles.back());
+    body_response.compute_volume_fields(earlier_cycles.back());
     for (const auto &cell : dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -155,13 +155,13 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_values(earlier_cycles.back(), last_u);
           std::vector<Materials::Response<dim>> tangents(n_q);
           for (unsigned int q = 0; q < n_q; ++q)
-            tangents[q] =
-                committed_response(cell,
-                                   q,
-                                   cell_quadrature.point(q),
-                                   last[q],
-                                   nullptr,
-                                   hoop_strain(fe_values.quadrature_point(q), last_u[q], last[q]));
+            tangents[q] = body_response.committed_response(
+                cell,
+                q,
+                cell_quadrature.point(q),
+                last[q],
+                nullptr,
+                body_response.hoop_strain(fe_values.quadrature_point(q), last_u[q], last[q]));
           for (unsigned int k = 0; k + 1 < earlier_cycles.size(); ++k)
             {
               fe_values[displacement].get_function_gradients(earlier_cycles[k], earlier);
@@ -171,7 +171,7 @@ namespace StabilizedLagrangian
                   const Point<dim>    &x     = fe_values.quadrature_point(q);
                   const Tensor<2, dim> error = last[q] - earlier[q];
                   const double         hoop =
-                      hoop_strain(x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
+                      body_response.hoop_strain(x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
                   const auto &A = tangents[q];
                   squared[k] +=
                       (scalar_product(error, double_contract<2, 0, 3, 1>(A.tangent, error)) +
