@@ -424,10 +424,61 @@ namespace StabilizedLagrangian
         local_matrix, local_rhs, dofs, view.system_matrix, view.system_rhs);
   }
 
+  template <int dim>
+  double
+  SystemAssembler<dim>::residual_norm() const
+  {
+    TrilinosWrappers::MPI::Vector scaled(view.system_rhs);
+    scaled.scale(view.residual_scaling);
+    return scaled.linfty_norm();
+  }
+
+  template <int dim>
+  ScaledResidual
+  SystemAssembler<dim>::scaled_residual() const
+  {
+    // largest: force residual, force scale, gap, slip, displacement
+    double largest[5] = {0., 0., 0., 0., 0.};
+    for (const auto i : view.locally_owned_u)
+      {
+        largest[0] = std::max(largest[0], std::abs(view.system_rhs(i)));
+        largest[1] = std::max(
+            {largest[1], std::abs(view.internal_force(i)), std::abs(view.external_force(i))});
+        largest[4] = std::max(largest[4], std::abs(view.solution(i)));
+      }
+    for (const auto &[row, component] : view.owned_multiplier_components)
+      if (view.multiplier_length_weights(row) > 0.)
+        {
+          double &block = largest[component == 0 ? 2 : 3];
+          block =
+              std::max(block, std::abs(view.system_rhs(row)) / view.multiplier_length_weights(row));
+        }
+    Utilities::MPI::max(largest, view.communicator, largest);
+    // Floor of the force scale: where the body moves without deforming (a
+    // rigid motion before contact, a free rotation) the forces are round-off,
+    // so forces below those that displace a node of the stiffest, smallest
+    // cell by a fraction force_scale_floor of the largest displacement count
+    // as zero (doc/formulation.md).
+    // The displacement yardstick is the iterate's, capped by the scene's
+    // extent: a diverged iterate (a node flung far away) may not make its own
+    // residual look small.
+    largest[4] = view.bounds.displacement_scale(largest[4]);
+    largest[1] = std::max(largest[1], force_scale_floor * view.nodal_stiffness * largest[4]);
+    // a zero residual is converged even where its scale is zero (a body at rest)
+    const auto ratio = [](const double value, const double scale) {
+      return value == 0.  ? 0.
+             : scale > 0. ? value / scale
+                          : std::numeric_limits<double>::infinity();
+    };
+    return ScaledResidual{ratio(largest[0], largest[1]),
+                          ratio(largest[2], largest[4]),
+                          ratio(largest[3], largest[4])};
+  }
+
   template class SystemAssembler<2>;
   template class SystemAssembler<3>;
 
-  // --- ContactProblem's part: the entry, the view, and the measures of the residual ---
+  // --- ContactProblem's part: the entry and the views ---
 
   template <int dim>
   void
@@ -473,6 +524,12 @@ namespace StabilizedLagrangian
                                                hanging_constraints,
                                                dirichlet_increment,
                                                dirichlet_predictor,
+                                               locally_owned_u,
+                                               solution,
+                                               residual_scaling,
+                                               owned_multiplier_components,
+                                               bounds,
+                                               nodal_stiffness,
                                                system_matrix,
                                                system_rhs,
                                                internal_force,
@@ -494,65 +551,13 @@ namespace StabilizedLagrangian
         dof_handler_u, *fe_u, mpi_communicator, locally_owned, locally_owned_u, axisymmetric, time};
   }
 
-  template <int dim>
-  double
-  ContactProblem<dim>::residual_norm() const
-  {
-    TrilinosWrappers::MPI::Vector scaled(system_rhs);
-    scaled.scale(residual_scaling);
-    return scaled.linfty_norm();
-  }
-
-  template <int dim>
-  ScaledResidual
-  ContactProblem<dim>::scaled_residual() const
-  {
-    // largest: force residual, force scale, gap, slip, displacement
-    double largest[5] = {0., 0., 0., 0., 0.};
-    for (const auto i : locally_owned_u)
-      {
-        largest[0] = std::max(largest[0], std::abs(system_rhs(i)));
-        largest[1] =
-            std::max({largest[1], std::abs(internal_force(i)), std::abs(external_force(i))});
-        largest[4] = std::max(largest[4], std::abs(solution(i)));
-      }
-    for (const auto &[row, component] : owned_multiplier_components)
-      if (multiplier_length_weights(row) > 0.)
-        {
-          double &block = largest[component == 0 ? 2 : 3];
-          block = std::max(block, std::abs(system_rhs(row)) / multiplier_length_weights(row));
-        }
-    Utilities::MPI::max(largest, mpi_communicator, largest);
-    // Floor of the force scale: where the body moves without deforming (a
-    // rigid motion before contact, a free rotation) the forces are round-off,
-    // so forces below those that displace a node of the stiffest, smallest
-    // cell by a fraction force_scale_floor of the largest displacement count
-    // as zero (doc/formulation.md).
-    // The displacement yardstick is the iterate's, capped by the scene's
-    // extent: a diverged iterate (a node flung far away) may not make its own
-    // residual look small.
-    largest[4] = bounds.displacement_scale(largest[4]);
-    largest[1] = std::max(largest[1], force_scale_floor * nodal_stiffness * largest[4]);
-    // a zero residual is converged even where its scale is zero (a body at rest)
-    const auto ratio = [](const double value, const double scale) {
-      return value == 0.  ? 0.
-             : scale > 0. ? value / scale
-                          : std::numeric_limits<double>::infinity();
-    };
-    return ScaledResidual{ratio(largest[0], largest[1]),
-                          ratio(largest[2], largest[4]),
-                          ratio(largest[3], largest[4])};
-  }
-
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                                       \
   template void                                ContactProblem<dim>::update_ghosts();              \
   template void                                ContactProblem<dim>::assemble_newton_system(bool); \
   template typename SystemAssembler<dim>::View ContactProblem<dim>::assembly_view();              \
-  template BoundaryConditions::Problem<dim>    ContactProblem<dim>::boundary_view() const;        \
-  template double                              ContactProblem<dim>::residual_norm() const;        \
-  template ScaledResidual                      ContactProblem<dim>::scaled_residual() const;
+  template BoundaryConditions::Problem<dim>    ContactProblem<dim>::boundary_view() const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

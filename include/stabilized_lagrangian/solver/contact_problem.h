@@ -36,7 +36,6 @@
 #include <stabilized_lagrangian/geometry/body_mesh.h>
 #include <stabilized_lagrangian/geometry/scene.h>
 #include <stabilized_lagrangian/materials/body_response.h>
-#include <stabilized_lagrangian/materials/f_bar.h>
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
@@ -162,18 +161,10 @@ namespace StabilizedLagrangian
     /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
      * iterate with the contact statuses, thresholds and pairings frozen
-     * (assembly.cc, as the residuals below).
+     * (SystemAssembler, through assembly_view(); assembly.cc).
      */
     void
     assemble_newton_system(const bool assemble_matrix = true);
-
-    /** @brief Residual max norm in force units (multiplier rows scaled by r_n, r_t). */
-    double
-    residual_norm() const;
-
-    /** @brief The blocks of the last assembled residual against their scales. */
-    ScaledResidual
-    scaled_residual() const;
 
     /** @brief Number of displacement DoFs (the first block of the monolithic system). */
     types::global_dof_index

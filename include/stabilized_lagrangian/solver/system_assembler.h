@@ -25,8 +25,10 @@
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
 #include <stabilized_lagrangian/solver/newton_solver.h>
+#include <stabilized_lagrangian/solver/scene_bounds.h>
 
 #include <functional>
+#include <utility>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,7 +50,8 @@ namespace StabilizedLagrangian
    * pairings frozen (or, with the generalized Newton, linearised): the volume
    * terms of the bodies (BodyResponse, with F-bar, mixed and axisymmetric), the
    * boundary conditions' face and DoF terms, the contact terms of the contact
-   * conditions on Γc, and the tangent predictor's K Δū (assembly.cc).
+   * conditions on Γc, and the tangent predictor's K Δū; and the measures of
+   * the assembled residual the Newton iteration stops on (assembly.cc).
    *
    * It reads the problem and writes the system through a View, built by the
    * problem for each assembly; it keeps nothing between assemblies.
@@ -97,6 +100,19 @@ namespace StabilizedLagrangian
       const TrilinosWrappers::MPI::Vector &dirichlet_increment;
       /** set by the predictor around its assembly alone: add K Δū */
       const bool &dirichlet_predictor;
+      // --- what the measures of the residual read
+      const IndexSet &locally_owned_u;
+      /** owned: the iterate */
+      const TrilinosWrappers::MPI::Vector &solution;
+      /** 1, r_n or r_t per owned row */
+      const TrilinosWrappers::MPI::Vector &residual_scaling;
+      /** the multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row */
+      const std::vector<std::pair<types::global_dof_index, unsigned int>>
+          &owned_multiplier_components;
+      /** the bodies' size: what an iterate may not exceed */
+      const SceneBounds &bounds;
+      /** E_max h_min^(dim−2), for the floor of the force scale */
+      const double &nodal_stiffness;
       // --- what the assembly writes
       TrilinosWrappers::SparseMatrix &system_matrix;
       TrilinosWrappers::MPI::Vector  &system_rhs;
@@ -134,6 +150,20 @@ namespace StabilizedLagrangian
      */
     void
     assemble(const bool assemble_matrix);
+
+    /**
+     * @brief The last assembled residual's max norm in force units (the
+     * multiplier rows scaled by r_n, r_t).
+     */
+    double
+    residual_norm() const;
+
+    /**
+     * @brief The blocks of the last assembled residual against their scales
+     * (doc/formulation.md, "Newton stopping criterion").
+     */
+    ScaledResidual
+    scaled_residual() const;
 
   private:
     /**
