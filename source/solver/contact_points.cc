@@ -106,15 +106,6 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  bool
-  ContactProblem<dim>::finite_strain() const
-  {
-    return std::any_of(materials.begin(), materials.end(), [](const auto &body) {
-      return body.model->is_finite_strain();
-    });
-  }
-
-  template <int dim>
   void
   ContactProblem<dim>::update_pairings(const bool resegment)
   {
@@ -298,7 +289,6 @@ namespace StabilizedLagrangian
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                               \
   template void ContactProblem<dim>::setup_contact_points();                              \
-  template bool ContactProblem<dim>::finite_strain() const;                               \
   template void ContactProblem<dim>::set_consistent_nodal_weights();                      \
   template void ContactProblem<dim>::update_pairings(bool);                               \
   template bool ContactProblem<dim>::update_segments();                                   \

@@ -140,7 +140,7 @@ namespace StabilizedLagrangian
     obstacle_rotation                      = motion.rotation;
     obstacle_motion                        = std::make_shared<const Contact::ObstacleMotion<dim>>(
         obstacle_translation, obstacle_rotation, motion.rotation_centre);
-    materials     = Materials::create_all<dim>(prm);
+    body_response.set_slots(Materials::create_all<dim>(prm));
     contact_zones = Contact::FrictionZones(prm, sections.zones);
     fe_pair = Discretization::Registry<dim>::create_without_parameters(contact_parameters.fe_pair);
     // the elements from the start: the boundary conditions' view
@@ -204,7 +204,7 @@ namespace StabilizedLagrangian
     // a flat obstacle in small strain never moves the pairing; a frictionless
     // or Tresca law never moves the threshold
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
-    loops.set_can_change(Loop::geometry, !(partner->is_flat() && !finite_strain()));
+    loops.set_can_change(Loop::geometry, !(partner->is_flat() && !body_response.finite_strain()));
     loops.set_can_change(Loop::friction, any_friction() && any_pressure_dependent_threshold());
     SceneChecks<dim>(scene_view()).warn_before_run();
   }
@@ -239,7 +239,7 @@ namespace StabilizedLagrangian
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          E_max = std::max(E_max, material_of(cell).youngs_modulus());
+          E_max = std::max(E_max, body_response.material_of(cell).youngs_modulus());
           h_min = std::min(h_min, cell->minimum_vertex_distance());
         }
     E_max               = Utilities::MPI::max(E_max, mpi_communicator);
@@ -254,7 +254,7 @@ namespace StabilizedLagrangian
         triangulation,
         cell_quadrature.size(),
         [this](const typename Triangulation<dim>::active_cell_iterator &cell)
-            -> const Materials::Interface<dim> & { return material_of(cell); });
+            -> const Materials::Interface<dim> & { return body_response.material_of(cell); });
   }
 
   template <int dim>
@@ -290,7 +290,7 @@ namespace StabilizedLagrangian
                               "integral of its shape function times 2 pi r, is zero, so its "
                               "multiplier would be undetermined. Use Contact quadrature = Gauss.");
     if (axisymmetric)
-      for (const auto &material : materials)
+      for (const auto &material : body_response.slots())
         if (material.modified_volume())
           throw InputError(material.slot +
                            "/Volumetric formulation: F-bar and mixed are built for plane strain "
@@ -298,7 +298,7 @@ namespace StabilizedLagrangian
                            "Volumetric formulation = displacement.");
     if (!simplex_mesh())
       return;
-    for (const auto &material : materials)
+    for (const auto &material : body_response.slots())
       if (material.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed &&
           fe_pair->displacement_degree() == 1)
         throw InputError(material.slot + "/Volumetric formulation = mixed: " + pair +
@@ -342,7 +342,7 @@ namespace StabilizedLagrangian
                            " is also in Contact/Contact boundary ids; the slave and master "
                            "surfaces must be different boundaries.");
       }
-    body_mesh.assign_material_slots(materials);
+    body_mesh.assign_material_slots(body_response.slots());
     if (axisymmetric)
       body_mesh.check_meridian_section();
     for (const auto &condition : boundary_conditions)

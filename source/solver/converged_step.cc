@@ -106,12 +106,12 @@ namespace StabilizedLagrangian
     CellAverages averages;
     // the history fields of every material, each name once
     std::vector<std::string> &names = averages.history_names;
-    for (const auto &body : materials)
+    for (const auto &body : body_response.slots())
       for (const auto &name : body.model->history_field_names())
         if (std::find(names.begin(), names.end(), name) == names.end())
           names.push_back(name);
     const unsigned int n_cells = triangulation.n_active_cells();
-    compute_volume_fields(u);
+    body_response.compute_volume_fields(u);
     averages.stress.assign(n_cells, Tensor<2, 3>());
     averages.history_fields.assign(names.size(), Vector<float>(n_cells));
     FEValues<dim> fe_values(
@@ -127,15 +127,15 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_gradients(u, gradients);
           fe_values[displacement].get_function_values(u, values);
           const unsigned int               index       = cell->active_cell_index();
-          const Materials::Interface<dim> &material    = material_of(cell);
+          const Materials::Interface<dim> &material    = body_response.material_of(cell);
           const std::vector<std::string>   field_names = material.history_field_names();
           for (unsigned int q = 0; q < cell_quadrature.size(); ++q)
             {
               // the committed history is that of this converged state
               const auto   history = material_history.committed(index, q);
               const double hoop =
-                  hoop_strain(fe_values.quadrature_point(q), values[q], gradients[q]);
-              const auto response = committed_response(
+                  body_response.hoop_strain(fe_values.quadrature_point(q), values[q], gradients[q]);
+              const auto response = body_response.committed_response(
                   cell, q, cell_quadrature.point(q), gradients[q], nullptr, hoop);
               averages.stress[index] +=
                   weight * Materials::cauchy_stress(

@@ -106,7 +106,7 @@ namespace StabilizedLagrangian
                                            Vector<double>                      &contact)
   {
     share_ghost_history();
-    view.compute_volume_fields(u);
+    view.body_response.compute_volume_fields(u);
     const double energy = add_volume_residuals(u, squared);
     add_face_residuals(u, squared);
     add_contact_residuals(u, contact);
@@ -120,9 +120,9 @@ namespace StabilizedLagrangian
     // the stress of a ghost neighbour depends on its history, which only its
     // owner updates
     const bool has_history =
-        std::any_of(view.materials.begin(), view.materials.end(), [](const auto &body) {
-          return body.model->n_history() > 0;
-        });
+        std::any_of(view.body_response.slots().begin(),
+                    view.body_response.slots().end(),
+                    [](const auto &body) { return body.model->n_history() > 0; });
     if (!has_history || Utilities::MPI::n_mpi_processes(view.communicator) == 1)
       return;
     Materials::QuadratureHistory &history = view.ghost_history;
@@ -147,7 +147,7 @@ namespace StabilizedLagrangian
     // F-bar and mixed evaluate the kept volume change at the point
     const Quadrature<dim> &rule    = view.cell_quadrature;
     const bool             history = material_of(cell).n_history() > 0;
-    const Point<dim>       unit    = history || view.body_of(cell).modified_volume()
+    const Point<dim>       unit    = history || view.body_response.body_of(cell).modified_volume()
                                          ? cell->reference_cell()
                                       .template get_default_linear_mapping<dim>()
                                       .transform_real_to_unit_cell(cell, point)
@@ -157,7 +157,7 @@ namespace StabilizedLagrangian
       for (unsigned int q = 1; q < rule.size(); ++q)
         if (rule.point(q).distance(unit) < rule.point(nearest).distance(unit))
           nearest = q;
-    return view.committed_response(cell, nearest, unit, grad_u, nullptr, hoop).stress;
+    return view.body_response.committed_response(cell, nearest, unit, grad_u, nullptr, hoop).stress;
   }
 
   template <int dim>
@@ -185,15 +185,16 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_values(u, values);
           // mixed on Q2: the kept volume change v̄ = Σ c_a ψ_a varies in the
           // cell, ψ_a = ξ_(a−1) − ξ_c (a ≥ 1)
-          const auto &body           = view.body_of(cell);
-          const bool  varying_volume = body.modified_volume() && view.n_volume_basis(body) > 1;
-          double      residual       = 0.;
+          const auto &body = view.body_response.body_of(cell);
+          const bool  varying_volume =
+              body.modified_volume() && view.body_response.volume_projection(body).n_basis() > 1;
+          double residual = 0.;
           for (unsigned int q = 0; q < rule.size(); ++q)
             {
               Tensor<2, dim>    d_kept;
               const Point<dim> &x        = fe_values.quadrature_point(q);
               const double      hoop     = hoop_strain(x, values[q], gradients[q]);
-              const auto        response = view.committed_response(
+              const auto        response = view.body_response.committed_response(
                   cell, q, rule.point(q), gradients[q], varying_volume ? &d_kept : nullptr, hoop);
               // div P = A : ∇∇u (A = ∂P/∂F) + ∂P/∂v̄ ∇v̄, no body force
               Tensor<1, dim> divergence;
@@ -205,7 +206,7 @@ namespace StabilizedLagrangian
               if (varying_volume)
                 {
                   const auto &coefficients =
-                      view.kept_volume_coefficients[cell->active_cell_index()];
+                      view.body_response.kept_volume(cell->active_cell_index());
                   Tensor<1, dim> grad_kept;
                   for (unsigned int a = 1; a <= dim; ++a)
                     for (unsigned int j = 0; j < dim; ++j)
@@ -489,43 +490,27 @@ namespace StabilizedLagrangian
   typename ErrorEstimator<dim>::View
   ContactProblem<dim>::error_estimator_view()
   {
-    using Cell = typename Triangulation<dim>::cell_iterator;
-    return typename ErrorEstimator<dim>::View{
-        triangulation,
-        dof_handler_u,
-        *fe_u,
-        cell_quadrature,
-        contact_quadrature,
-        spaces,
-        contact_faces,
-        contact_states,
-        ghosted_solution,
-        static_cast<const ContactPointLaw<dim> &>(*this),
-        chosen.contact_boundaries,
-        chosen.master_boundaries,
-        boundary_conditions,
-        boundary_view(),
-        mpi_communicator,
-        cell_shape(),
-        simplex_mesh(),
-        axisymmetric,
-        negligible_pressure,
-        materials,
-        material_history,
-        kept_volume_coefficients,
-        [this](const Cell &cell) -> const Materials::BodyMaterial<dim> & { return body_of(cell); },
-        [this](const Materials::BodyMaterial<dim> &body) {
-          return volume_projection(body).n_basis();
-        },
-        [this](const Cell           &cell,
-               const unsigned int    q,
-               const Point<dim>     &unit,
-               const Tensor<2, dim> &grad_u,
-               Tensor<2, dim>       *d_kept,
-               const double          hoop) {
-          return committed_response(cell, q, unit, grad_u, d_kept, hoop);
-        },
-        [this](const TrilinosWrappers::MPI::Vector &u) { compute_volume_fields(u); }};
+    return typename ErrorEstimator<dim>::View{triangulation,
+                                              dof_handler_u,
+                                              *fe_u,
+                                              cell_quadrature,
+                                              contact_quadrature,
+                                              spaces,
+                                              contact_faces,
+                                              contact_states,
+                                              ghosted_solution,
+                                              static_cast<const ContactPointLaw<dim> &>(*this),
+                                              chosen.contact_boundaries,
+                                              chosen.master_boundaries,
+                                              boundary_conditions,
+                                              boundary_view(),
+                                              mpi_communicator,
+                                              cell_shape(),
+                                              simplex_mesh(),
+                                              axisymmetric,
+                                              negligible_pressure,
+                                              body_response,
+                                              material_history};
   }
 
   template <int dim>

@@ -199,7 +199,7 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>>      last(n_q), earlier(n_q);
     std::vector<Tensor<1, dim>>      last_u(n_q), earlier_u(n_q); // axisymmetric: hoop strains
     std::vector<double>              squared(problem.earlier_cycles.size(), 0.);
-    problem.compute_volume_fields(problem.earlier_cycles.back());
+    problem.body_response.compute_volume_fields(problem.earlier_cycles.back());
     for (const auto &cell : problem.dof_handler_u.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -208,12 +208,14 @@ namespace StabilizedLagrangian
           fe_values[displacement].get_function_values(problem.earlier_cycles.back(), last_u);
           std::vector<Materials::Response<dim>> tangents(n_q);
           for (unsigned int q = 0; q < n_q; ++q)
-            tangents[q] = problem.committed_response(
+            tangents[q] = problem.body_response.committed_response(
                 cell,
                 q,
                 problem.cell_quadrature.point(q),
                 last[q],
-                problem.hoop_strain(fe_values.quadrature_point(q), last_u[q], last[q]));
+                nullptr,
+                problem.body_response.hoop_strain(
+                    fe_values.quadrature_point(q), last_u[q], last[q]));
           for (unsigned int k = 0; k + 1 < problem.earlier_cycles.size(); ++k)
             {
               fe_values[displacement].get_function_gradients(problem.earlier_cycles[k], earlier);
@@ -222,8 +224,8 @@ namespace StabilizedLagrangian
                 {
                   const Point<dim>    &x     = fe_values.quadrature_point(q);
                   const Tensor<2, dim> error = last[q] - earlier[q];
-                  const double         hoop =
-                      problem.hoop_strain(x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
+                  const double         hoop  = problem.body_response.hoop_strain(
+                      x, last_u[q] - earlier_u[q], last[q] - earlier[q]);
                   const auto &A = tangents[q];
                   squared[k] +=
                       (scalar_product(error, double_contract<2, 0, 3, 1>(A.tangent, error)) +
@@ -276,21 +278,11 @@ namespace StabilizedLagrangian
         earlier_cycles,
         cycle_records,
         load_path,
+        body_response,
         [this]() { MeshRefinement<dim>(refinement_view()).refine(); },
         [this]() { return inf_sup_view(); },
         [this]() { return ghosted_displacement(); },
-        [this](const TrilinosWrappers::MPI::Vector &u) { compute_volume_fields(u); },
-        [this](const typename Triangulation<dim>::cell_iterator &cell,
-               const unsigned int                                q,
-               const Point<dim>                                 &unit,
-               const Tensor<2, dim>                             &grad_u,
-               const double                                      hoop) {
-          return committed_response(cell, q, unit, grad_u, nullptr, hoop);
-        },
-        [this](const Point<dim> &x) { return radial_weight(x); },
-        [this](const Point<dim> &x, const Tensor<1, dim> &u, const Tensor<2, dim> &grad_u) {
-          return hoop_strain(x, u, grad_u);
-        }};
+        [this](const Point<dim> &x) { return radial_weight(x); }};
   }
 
   // Explicit instantiation of the members defined in this file.

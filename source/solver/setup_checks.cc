@@ -23,9 +23,9 @@ namespace StabilizedLagrangian
             chosen.master_boundaries,
             partner.get(),
             *fe_pair,
-            materials,
+            body_response.slots(),
             [this](const typename Triangulation<dim>::cell_iterator &cell)
-                -> const Materials::Interface<dim> & { return material_of(cell); },
+                -> const Materials::Interface<dim> & { return body_response.material_of(cell); },
             axisymmetric,
             any_friction(),
             simplex_mesh()};

@@ -35,7 +35,7 @@
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/body_mesh.h>
 #include <stabilized_lagrangian/geometry/scene.h>
-#include <stabilized_lagrangian/materials/f_bar.h>
+#include <stabilized_lagrangian/materials/body_response.h>
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/obstacles/obstacle.h>
@@ -59,6 +59,7 @@
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
 #include <stabilized_lagrangian/solver/step_statistics_collector.h>
+#include <stabilized_lagrangian/solver/system_assembler.h>
 #include <stabilized_lagrangian/solver/system_constraints.h>
 
 #include <algorithm>
@@ -83,8 +84,9 @@ namespace StabilizedLagrangian
    * the checks of the scene and the inf-sup test read and the start of a
    * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints
    * (SystemConstraints), contact_points.cc pairing and statuses, assembly.cc the
-   * Newton system, load_path.cc the view the load path reads, refinement_cycles.cc
-   * the view the refinement cycles read, run_log.cc the view the log reads,
+   * view the assembly of the Newton system reads, load_path.cc the view the load
+   * path reads, refinement_cycles.cc the view the refinement cycles read, run_log.cc
+   * the view the log reads,
    * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
    * the Newton iteration reads, converged_step.cc what an accepted step commits,
    * refinement.cc the views of the step's statistics
@@ -99,8 +101,10 @@ namespace StabilizedLagrangian
    * written by RunLog (solver/run_log.h), the output files are written by SolutionOutput
    * (postprocessing/solution_output.h), the scene is checked by SceneChecks
    * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h),
-   * the residual error estimate is ErrorEstimator's (solver/error_estimator.h;
-   * error_estimator.cc builds its view) and the refinement of the mesh
+   * the Newton system is assembled by SystemAssembler (solver/system_assembler.h),
+   * the bodies' material response is Materials::BodyResponse's
+   * (materials/body_response.h), the residual error estimate is ErrorEstimator's
+   * (solver/error_estimator.h; error_estimator.cc builds its view) and the refinement of the mesh
    * MeshRefinement's (solver/mesh_refinement.h); the mesh is BodyMesh's
    * (geometry/body_mesh.h), the friction laws of Γc and its zones are
    * Contact::FrictionZones (contact/friction_zones.h).
@@ -165,18 +169,10 @@ namespace StabilizedLagrangian
     /**
      * @brief Assemble the residual and (optionally) the Jacobian at the current
      * iterate with the contact statuses, thresholds and pairings frozen
-     * (assembly.cc, as the residuals below).
+     * (SystemAssembler, through assembly_view(); assembly.cc).
      */
     void
     assemble_newton_system(const bool assemble_matrix = true);
-
-    /** @brief Residual max norm in force units (multiplier rows scaled by r_n, r_t). */
-    double
-    residual_norm() const;
-
-    /** @brief The blocks of the last assembled residual against their scales. */
-    ScaledResidual
-    scaled_residual() const;
 
     /** @brief Number of displacement DoFs (the first block of the monolithic system). */
     types::global_dof_index
@@ -428,17 +424,6 @@ namespace StabilizedLagrangian
     {
       return spaces.radial_weight(x);
     }
-    /**
-     * The hoop strain u_r / r at @p x of an axisymmetric model, 0 otherwise;
-     * on the axis its limit ∂u_r/∂r (u_r = 0 there), from @p grad_u.
-     */
-    double
-    hoop_strain(const Point<dim> &x, const Tensor<1, dim> &u, const Tensor<2, dim> &grad_u) const
-    {
-      if (!axisymmetric)
-        return 0.;
-      return x[0] > 0. ? u[0] / x[0] : grad_u[0][0];
-    }
     /** The reference cell of the mesh's cells (BodyMesh::cell_shape()). */
     ReferenceCell
     cell_shape() const
@@ -540,9 +525,6 @@ namespace StabilizedLagrangian
     /** The consistent nodal weights of the contact faces (ContactFace::nodal_weights). */
     void
     set_consistent_nodal_weights();
-    /** Whether any material is finite strain. */
-    bool
-    finite_strain() const;
     /** Call f(state, kinematics) at every locally owned contact point, nothing re-evaluated. */
     template <typename Function>
     void
@@ -615,128 +597,10 @@ namespace StabilizedLagrangian
     double
     threshold_pressure(double contact_pressure) const override;
 
-    // --- assembly.cc: assembly of the Newton system and its residual ---
-    /** The material of a cell (by its body, `Material 2`, `Material 3`, else `Material`). */
-    const Materials::Interface<dim> &
-    material_of(const typename Triangulation<dim>::cell_iterator &cell) const
-    {
-      return *body_of(cell).model;
-    }
-    /** The material slot of a cell: its model and formulation. */
-    const Materials::BodyMaterial<dim> &
-    body_of(const typename Triangulation<dim>::cell_iterator &cell) const
-    {
-      return materials[body_mesh.material_slot(cell->material_id())];
-    }
-    /**
-     * The response of @p cell's material at its quadrature point @p q (the
-     * history's) or reference point @p unit for @p grad_u, from the committed
-     * history (that of the last converged state); the updated history is
-     * discarded. With F-bar and mixed, ∂P̃/∂v̄ into @p d_kept when given; in an
-     * axisymmetric model @p hoop is the hoop strain u_r/r. For
-     * the output and the error estimate, never the assembly.
-     */
-    Materials::Response<dim>
-    committed_response(const typename Triangulation<dim>::cell_iterator &cell,
-                       const unsigned int                                q,
-                       const Point<dim>                                 &unit,
-                       const Tensor<2, dim>                             &grad_u,
-                       Tensor<2, dim>                                   *d_kept = nullptr,
-                       const double                                      hoop   = 0.) const
-    {
-      const auto          history = material_history.committed(cell->active_cell_index(), q);
-      std::vector<double> discarded(history.size());
-      const auto         &body = body_of(cell);
-      if (!body.modified_volume())
-        return body.model->evaluate(grad_u, history, make_array_view(discarded), hoop);
-      // The estimate evaluates the stress between the quadrature points too,
-      // where a cell whose quadrature points are admissible may be inverted
-      // (J ≤ 0 at a face point of an hourglassing cell): there, the centre's state.
-      const unsigned int                     index      = cell->active_cell_index();
-      const Materials::VolumeProjection<dim> projection = volume_projection(body);
-      const bool                             finite     = body.model->is_finite_strain();
-      const double kept = projection.value(kept_volume_coefficients[index], unit);
-      const bool   admissible =
-          !finite || (determinant(unit_symmetric_tensor<dim>() + grad_u) > 0. && kept > 0.);
-      return material_response(body,
-                               admissible ? grad_u : centre_gradients[index],
-                               admissible ? kept : kept_volume_coefficients[index][0],
-                               history,
-                               make_array_view(discarded),
-                               d_kept);
-    }
-    /**
-     * The response of @p body's model at one quadrature point from the
-     * history @p committed (the updated one into @p trial): P and ∂P/∂F at
-     * @p grad_u; with F-bar or mixed the weak-form stress P̃, ∂P̃/∂F and, into
-     * @p d_kept when given, ∂P̃/∂v̄ for the volume change @p kept the point
-     * keeps (include/stabilized_lagrangian/materials/f_bar.h); @p hoop: the hoop
-     * strain u_r/r of an axisymmetric model (displacement formulation only).
-     */
-    Materials::Response<dim>
-    material_response(const Materials::BodyMaterial<dim> &body,
-                      const Tensor<2, dim>               &grad_u,
-                      const double                        kept,
-                      const ArrayView<const double>      &committed,
-                      const ArrayView<double>            &trial,
-                      Tensor<2, dim>                     *d_kept,
-                      const double                        hoop = 0.) const
-    {
-      if (!body.modified_volume())
-        return body.model->evaluate(grad_u, committed, trial, hoop);
-      const Materials::FBar<dim> f_bar(grad_u, kept, body.model->is_finite_strain());
-      Materials::Response<dim>   weak;
-      Tensor<2, dim>             unused;
-      f_bar.weak_form(body.model->evaluate_3d(f_bar.modified_gradient(), committed, trial),
-                      weak,
-                      d_kept ? *d_kept : unused);
-      return weak;
-    }
-    /**
-     * The projection of the volume change of @p body's cells: degree 0 for
-     * F-bar (one sample, the centre) and for mixed on Q1 and simplices, degree 1
-     * for mixed on Q2 (Q2/P1disc).
-     */
-    Materials::VolumeProjection<dim>
-    volume_projection(const Materials::BodyMaterial<dim> &body) const
-    {
-      const bool p1 = body.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed &&
-                      !simplex_mesh() && fe_pair->displacement_degree() == 2;
-      return Materials::VolumeProjection<dim>(
-          p1 ? 1 : 0, cell_gauss(1).point(0), body.model->is_finite_strain());
-    }
-    /**
-     * F-bar and mixed: the gradient of @p u at the centre of every cell this
-     * rank holds (owned and ghost) and the coefficients of its kept volume
-     * change, for committed_response(); nothing when no material slot asks
-     * for them.
-     */
-    void
-    compute_volume_fields(const TrilinosWrappers::MPI::Vector &u) const;
-    void
-    assemble_volume(const bool assemble_matrix);
-    void
-    assemble_contact(const bool assemble_matrix);
-    /**
-     * Add the boundary conditions' face terms (the tractions of the Neumann
-     * conditions and the springs) on @p cell's faces to @p cell_rhs (the springs' stiffness to @p
-     * cell_matrix), and the external force they make to external_force.
-     */
-    void
-    add_boundary_loads(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                       const std::vector<types::global_dof_index>           &dofs,
-                       const std::vector<double>                            &coefficients,
-                       FEFaceValues<dim>                                    &face_values,
-                       FullMatrix<double>                                   &cell_matrix,
-                       Vector<double>                                       &cell_rhs,
-                       Vector<double>                                       &cell_external,
-                       const bool                                            assemble_matrix);
-    /** Add a local system to the global one (with the tangent predictor, if pending). */
-    void
-    add_to_global_system(const FullMatrix<double>                   &local_matrix,
-                         Vector<double>                             &local_rhs,
-                         const std::vector<types::global_dof_index> &dofs,
-                         const bool                                  assemble_matrix);
+    // --- assembly.cc: the Newton system (SystemAssembler, solver/system_assembler.h) ---
+    /** What the assembly of the Newton system reads and writes of this problem, now. */
+    typename SystemAssembler<dim>::View
+    assembly_view();
 
     // --- refinement.cc: the view of a step's statistics (StepStatisticsCollector) and of the
     // adaptive refinement ---
@@ -834,8 +698,6 @@ namespace StabilizedLagrangian
     std::shared_ptr<Parameters::BoundaryFunction<dim>> obstacle_rotation;
     /** the two, about `Obstacle/Motion/Rotation centre` */
     std::shared_ptr<const Contact::ObstacleMotion<dim>> obstacle_motion;
-    /** the default model first, then the slots in use (BodyMesh::material_slot() of a body) */
-    std::vector<Materials::BodyMaterial<dim>> materials;
     /**
      * the contact partner, built with the DoFs (dofs.cc): the deformable
      * master's surface when `Contact/Master boundary ids` is set, else the obstacle
@@ -873,9 +735,6 @@ namespace StabilizedLagrangian
     /** Set by an assembly that met a material state outside its admissible range. */
     std::string inadmissible_state;
 
-    /** F-bar: ∇u at each cell's centre for the output and the error estimate (by active index) */
-    mutable std::vector<Tensor<2, dim>>              centre_gradients;
-    mutable std::vector<std::array<double, dim + 1>> kept_volume_coefficients;
     /** the bodies' distributed mesh, its cell shape and quadratures */
     BodyMesh<dim>                                body_mesh;
     parallel::DistributedTriangulationBase<dim> &triangulation;
@@ -888,6 +747,12 @@ namespace StabilizedLagrangian
     DoFHandler<dim>                        dof_handler_u, dof_handler_m;
     Quadrature<dim>                        cell_quadrature;
     Quadrature<dim - 1>                    contact_quadrature;
+    /**
+     * the bodies' material slots, each cell's model and formulation, its
+     * response and the F-bar fields (Materials::BodyResponse)
+     */
+    Materials::BodyResponse<dim> body_response{
+        body_mesh, material_history, fe_pair, fe_u, dof_handler_u, cell_quadrature, axisymmetric};
 
     types::global_dof_index n_u           = 0;
     types::global_dof_index n_multipliers = 0;

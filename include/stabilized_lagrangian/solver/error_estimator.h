@@ -18,6 +18,7 @@
 #include <stabilized_lagrangian/contact/contact_conditions.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
+#include <stabilized_lagrangian/materials/body_response.h>
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/materials/quadrature_history.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
@@ -97,26 +98,11 @@ namespace StabilizedLagrangian
       const bool                                                              simplex;
       const bool                                                              axisymmetric;
       /** a pressure below it is round-off (ContactProblem::negligible_pressure) */
-      const double                                     negligible_pressure;
-      const std::vector<Materials::BodyMaterial<dim>> &materials;
+      const double negligible_pressure;
+      /** the bodies' materials and the committed state's response (with the F-bar fields) */
+      const Materials::BodyResponse<dim> &body_response;
       /** written: the ghost cells' committed history, copied from their owners */
       Materials::QuadratureHistory &ghost_history;
-      /** F-bar and mixed: the kept volume change of each cell (compute_volume_fields) */
-      const std::vector<std::array<double, dim + 1>> &kept_volume_coefficients;
-      /** the material slot of a cell */
-      std::function<const Materials::BodyMaterial<dim> &(const TriaCell &)> body_of;
-      /** the number of basis functions of a body's kept volume change */
-      std::function<unsigned int(const Materials::BodyMaterial<dim> &)> n_volume_basis;
-      /** ContactProblem::committed_response: the committed state's response */
-      std::function<Materials::Response<dim>(const TriaCell &,
-                                             unsigned int,
-                                             const Point<dim> &,
-                                             const Tensor<2, dim> &,
-                                             Tensor<2, dim> *,
-                                             double)>
-          committed_response;
-      /** F-bar and mixed: compute the kept volume change of a displacement */
-      std::function<void(const TrilinosWrappers::MPI::Vector &)> compute_volume_fields;
     };
 
     /** @brief An estimator of the state @p view shows. */
@@ -158,15 +144,13 @@ namespace StabilizedLagrangian
     const Materials::Interface<dim> &
     material_of(const TriaCell &cell) const
     {
-      return *view.body_of(cell).model;
+      return view.body_response.material_of(cell);
     }
     /** The hoop strain u_r / r of an axisymmetric model, 0 otherwise (on the axis ∂u_r/∂r). */
     double
     hoop_strain(const Point<dim> &x, const Tensor<1, dim> &u, const Tensor<2, dim> &grad_u) const
     {
-      if (!view.axisymmetric)
-        return 0.;
-      return x[0] > 0. ? u[0] / x[0] : grad_u[0][0];
+      return view.body_response.hoop_strain(x, u, grad_u);
     }
     /** The Gauss rule of the faces with @p n points per direction. */
     Quadrature<dim - 1>

@@ -13,6 +13,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <stabilized_lagrangian/materials/body_response.h>
 #include <stabilized_lagrangian/materials/material.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
@@ -94,26 +95,16 @@ namespace StabilizedLagrangian
       std::vector<std::pair<types::global_dof_index, double>> &cycle_records;
       /** the load path on each cycle's mesh */
       LoadPath<dim> &load_path;
+      /** the bodies' committed material response (the energy norm of cycle_errors.csv) */
+      const Materials::BodyResponse<dim> &body_response;
       // --- what only the problem can do
       /** refine the mesh by the criterion (MeshRefinement) and set up after it */
       std::function<void()>                           refine;
       std::function<typename InfSupTest<dim>::View()> inf_sup_view;
       /** the displacement block of the iterate (ghosted) */
       std::function<TrilinosWrappers::MPI::Vector()> ghosted_displacement;
-      /** F-bar and mixed: the fields committed_response() reads, for a displacement */
-      std::function<void(const TrilinosWrappers::MPI::Vector &)> compute_volume_fields;
-      /** the committed material response of a cell at a quadrature point (with the hoop strain) */
-      std::function<Materials::Response<dim>(const typename Triangulation<dim>::cell_iterator &,
-                                             unsigned int          q,
-                                             const Point<dim>     &unit,
-                                             const Tensor<2, dim> &grad_u,
-                                             double                hoop)>
-          committed_response;
       /** the measure of the model at a point (2πr when axisymmetric) */
       std::function<double(const Point<dim> &)> radial_weight;
-      /** the hoop strain u_r / r of an axisymmetric model, 0 otherwise */
-      std::function<double(const Point<dim> &, const Tensor<1, dim> &, const Tensor<2, dim> &)>
-          hoop_strain;
     };
 
     /** @brief The cycles of the problem @p problem views. */
