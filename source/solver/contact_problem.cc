@@ -155,7 +155,7 @@ namespace StabilizedLagrangian
     std::ostringstream used;
     prm.print_parameters(used, ParameterHandler::PRM);
     parameters_used = used.str();
-    register_run_state();
+    checkpoint.register_run_state();
   }
 
   template <int dim>

@@ -30,7 +30,7 @@ namespace StabilizedLagrangian
     setup();
     if (!resume)
       solution_output.prepare_directory(output_directory);
-    const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
+    const unsigned int first_cycle = resume ? checkpoint.restore() : 0;
     // the estimate of the restored (converged) state, which the cycle's row
     // and the summary report if the checkpoint ended the cycle's load path
     if (resume)
@@ -237,7 +237,7 @@ namespace StabilizedLagrangian
         const bool checkpointed = output_parameters.checkpoint_interval > 0 &&
                                   steps.step() % output_parameters.checkpoint_interval == 0;
         if (checkpointed)
-          write_checkpoint();
+          checkpoint.write();
         if (stop_at_wall_time_limit(steps, path, checkpointed))
           return false;
       }
@@ -355,7 +355,7 @@ namespace StabilizedLagrangian
     if (!stop)
       return false;
     if (output_parameters.checkpoint_interval > 0 && !checkpointed)
-      write_checkpoint();
+      checkpoint.write();
     pcout << "Stopped at the wall-time limit (Load stepping/Wall time limit = " << limit
           << " s) after load step " << step << " at t = " << time << ", " << elapsed
           << " s into the run. The results of the " << step << " converged steps are in "
