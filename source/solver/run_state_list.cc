@@ -10,10 +10,11 @@
 namespace StabilizedLagrangian
 {
   // The run's state, listed once (RunState): what a step cut restores and a
-  // checkpoint keeps (Checkpoint, solver/checkpoint.h, adds the problem's own
-  // entries through the view ContactProblem::checkpoint_view() builds here). Each entry checks what
-  // it reads from a checkpoint, which is untrusted input (source/solver/checkpoint.cc); the mesh
-  // the state lives on (its refinements) is the checkpoint's own header.
+  // checkpoint keeps. Checkpoint (solver/checkpoint.h) adds the problem's own
+  // entries through the view ContactProblem::checkpoint_view() builds here.
+  // Each entry checks what it reads from a checkpoint, which is untrusted
+  // input (source/solver/checkpoint.cc); the mesh the state lives on (its
+  // refinements) is the checkpoint's own header.
 
   namespace
   {

@@ -87,8 +87,9 @@ namespace StabilizedLagrangian
    * refinement's view and the cycles' errors, run_state_list.cc the view the
    * checkpoints read. The checkpoints and the problem's entries of the run's
    * state (what a step cut restores and a checkpoint keeps) are Checkpoint's
-   * (solver/checkpoint.h: checkpoint.cc, run_state_list.cc). The loops of seed §2.2 are
-   * NestedLoops' (solver/nested_loops.h), the Newton iteration they call NewtonSolver's
+   * (solver/checkpoint.h: checkpoint.cc, run_state_list.cc). The loops of
+   * seed §2.2 are NestedLoops' (solver/nested_loops.h), the Newton iteration
+   * they call NewtonSolver's
    * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
    * newton_line_search.cc); the log of the load path and run_summary.csv are
    * written by RunLog (solver/run_log.h), the output files are written by SolutionOutput
@@ -124,8 +125,8 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The run's state, listed once (Checkpoint lists the problem's
-     * own, source/solver/run_state_list.cc): what a step cut restores and a checkpoint
-     * keeps. An extension adds the state it keeps here, before run().
+     * own, source/solver/run_state_list.cc): what a step cut restores and a
+     * checkpoint keeps. An extension adds the state it keeps here, before run().
      */
     RunState &
     run_state()
