@@ -5,7 +5,7 @@
 
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/safe_files.h>
-#include <stabilized_lagrangian/solver/contact_problem.h>
+#include <stabilized_lagrangian/solver/checkpoint.h>
 #include <stabilized_lagrangian/solver/state_archive.h>
 
 #include <algorithm>
@@ -342,19 +342,19 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::write_checkpoint() const
+  Checkpoint<dim>::write() const
   {
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(view.communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(view.communicator);
     // the checkpoint belongs to the output directory of the run, not of a cycle
-    const std::string &base = run_directory;
+    const std::string &base = view.run_directory;
     const std::string  next = base + "/checkpoint.new";
     if (rank == 0)
       {
         std::filesystem::remove_all(next);
         std::filesystem::create_directories(next);
       }
-    MPI_Barrier(mpi_communicator);
+    MPI_Barrier(view.communicator);
 
     StateWriter out;
     out.put(std::string(magic));
@@ -362,28 +362,28 @@ namespace StabilizedLagrangian
     out.put(n_ranks);
     out.put(rank);
     // the mesh the state lives on
-    out.put(static_cast<std::uint64_t>(n_u));
-    out.put(static_cast<std::uint64_t>(n_multipliers));
-    out.put(static_cast<std::uint64_t>(refinement_history.size()));
-    for (const auto &flagged : refinement_history)
+    out.put(static_cast<std::uint64_t>(view.n_u));
+    out.put(static_cast<std::uint64_t>(view.n_multipliers));
+    out.put(static_cast<std::uint64_t>(view.refinement_history.size()));
+    for (const auto &flagged : view.refinement_history)
       {
         out.put(static_cast<std::uint64_t>(flagged.size()));
         for (const auto &id : flagged)
           out.put(id.to_string());
       }
-    out.put(cycle);
-    state_list.write(out);
+    out.put(view.cycle);
+    view.state_list.write(out);
     out.put(std::string(magic));
     const std::string bytes = out.sealed();
     SafeFiles::write_atomically(next + "/" + rank_file_name(rank), bytes);
 
-    const auto sizes = Utilities::MPI::gather(mpi_communicator, bytes.size(), 0);
+    const auto sizes = Utilities::MPI::gather(view.communicator, bytes.size(), 0);
     if (rank == 0)
       {
-        SafeFiles::write_atomically(next + "/parameters.prm", parameters_used);
+        SafeFiles::write_atomically(next + "/parameters.prm", view.parameters_used);
         std::ostringstream manifest;
-        manifest << "ranks " << n_ranks << "\nstep " << controller.step << "\ntime " << time
-                 << "\ncycle " << cycle << "\n";
+        manifest << "ranks " << n_ranks << "\nstep " << view.controller.step << "\ntime "
+                 << view.time << "\ncycle " << view.cycle << "\n";
         for (unsigned int r = 0; r < n_ranks; ++r)
           manifest << rank_file_name(r) << " " << sizes[r] << "\n";
         // the manifest last: a directory without one is incomplete
@@ -395,131 +395,131 @@ namespace StabilizedLagrangian
         std::filesystem::rename(next, current);
         std::filesystem::remove_all(old);
       }
-    MPI_Barrier(mpi_communicator);
-    pcout << "  checkpoint written (step " << controller.step << ", t = " << time << ")\n";
+    MPI_Barrier(view.communicator);
+    view.pcout << "  checkpoint written (step " << view.controller.step << ", t = " << view.time
+               << ")\n";
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::replay_refinements()
+  Checkpoint<dim>::replay_refinements()
   {
-    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-    for (unsigned int r = 0; r < refinement_history.size(); ++r)
+    const unsigned int rank = Utilities::MPI::this_mpi_process(view.communicator);
+    for (unsigned int r = 0; r < view.refinement_history.size(); ++r)
       {
-        check_on_every_rank(mpi_communicator, [&] {
-          for (const auto &id : refinement_history[r])
+        check_on_every_rank(view.communicator, [&] {
+          for (const auto &id : view.refinement_history[r])
             {
-              const auto cell = find_cell<dim>(triangulation, id);
+              const auto cell = find_cell<dim>(view.triangulation, id);
               if (!cell || !(*cell)->is_active() || !(*cell)->is_locally_owned())
                 throw_damaged_checkpoint(
-                    find_checkpoint(run_directory) + "/" + rank_file_name(rank),
+                    find_checkpoint(view.run_directory) + "/" + rank_file_name(rank),
                     "refinement " + std::to_string(r + 1) + " names the cell " + id.to_string() +
                         ", which is not an active cell of this rank on the mesh "
                         "refined as the checkpoint says before");
               (*cell)->set_refine_flag();
             }
         });
-        triangulation.execute_coarsening_and_refinement();
-        setup_after_refinement();
+        view.triangulation.execute_coarsening_and_refinement();
+        view.setup_after_refinement();
       }
   }
 
   template <int dim>
   unsigned int
-  ContactProblem<dim>::restore_checkpoint()
+  Checkpoint<dim>::restore()
   {
-    const unsigned int rank      = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int n_ranks   = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const std::string  directory = find_checkpoint(run_directory);
+    const unsigned int rank      = Utilities::MPI::this_mpi_process(view.communicator);
+    const unsigned int n_ranks   = Utilities::MPI::n_mpi_processes(view.communicator);
+    const std::string  directory = find_checkpoint(view.run_directory);
     std::string        path;
     SavedState         saved;
-    check_on_every_rank(mpi_communicator, [&] {
+    check_on_every_rank(view.communicator, [&] {
       path = rank_file(directory, rank, n_ranks);
-      check_resume_parameters(directory, parameters_used);
+      check_resume_parameters(directory, view.parameters_used);
       StateReader in(read_whole(path), path);
-      saved = read_saved_state<dim>(in, state_list, rank, n_ranks);
+      saved = read_saved_state<dim>(in, view.state_list, rank, n_ranks);
       // one refinement before each adaptive refinement cycle after the first
-      if (saved.cycle > adaptive_refinement.cycles || saved.refinements.size() != saved.cycle)
+      if (saved.cycle > view.adaptive_refinement.cycles || saved.refinements.size() != saved.cycle)
         in.damaged("it was taken in refinement cycle " + std::to_string(saved.cycle) + " after " +
                    std::to_string(saved.refinements.size()) + " refinements; the scene has " +
-                   std::to_string(adaptive_refinement.cycles) + " cycles");
+                   std::to_string(view.adaptive_refinement.cycles) + " cycles");
     });
 
     // the mesh: the same refinements, cell by cell
-    refinement_history = saved.refinements;
+    view.refinement_history = saved.refinements;
     replay_refinements();
 
     // the state, once it is known to fit the rebuilt mesh
     std::vector<std::function<void()>> put_back;
-    check_on_every_rank(mpi_communicator, [&] {
-      if (saved.n_u != n_u || saved.n_multipliers != n_multipliers)
+    check_on_every_rank(view.communicator, [&] {
+      if (saved.n_u != view.n_u || saved.n_multipliers != view.n_multipliers)
         throw InputError("the checkpoint in " + directory + " has " + std::to_string(saved.n_u) +
                          " + " + std::to_string(saved.n_multipliers) + " DoFs, the rebuilt mesh " +
-                         std::to_string(n_u) + " + " + std::to_string(n_multipliers) +
+                         std::to_string(view.n_u) + " + " + std::to_string(view.n_multipliers) +
                          ": the scene's mesh changed.");
-      put_back = state_list.load(saved.entries, path);
+      put_back = view.state_list.load(saved.entries, path);
     });
-    cycle = saved.cycle;
+    view.cycle = saved.cycle;
     for (const auto &put : put_back)
       if (put)
         put();
-    pcout << "Resuming from " << directory << ": step " << controller.step << ", t = " << time
-          << (adaptive_refinement.cycles > 0 ? ", refinement cycle " + std::to_string(cycle)
-                                             : std::string())
-          << "\n";
-    return cycle;
+    view.pcout << "Resuming from " << directory << ": step " << view.controller.step
+               << ", t = " << view.time
+               << (view.adaptive_refinement.cycles > 0
+                       ? ", refinement cycle " + std::to_string(view.cycle)
+                       : std::string())
+               << "\n";
+    return view.cycle;
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::continue_outputs(const unsigned long            cycles_bytes,
-                                        const StatisticsWriter::State &statistics_state)
+  Checkpoint<dim>::continue_outputs(const unsigned long            cycles_bytes,
+                                    const StatisticsWriter::State &statistics_state)
   {
     // the output continues where the checkpoint was taken: a killed run may have
     // written rows and files of later steps
-    const std::string &base = run_directory;
-    const bool         root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    check_on_every_rank(mpi_communicator, [&] {
+    const std::string &base = view.run_directory;
+    const bool         root = Utilities::MPI::this_mpi_process(view.communicator) == 0;
+    check_on_every_rank(view.communicator, [&] {
       try
         {
           if (root && cycles_bytes > 0)
             SafeFiles::truncate(base + "/refinement_cycles.csv", cycles_bytes);
-          output_directory = cycle_directory(cycle);
-          statistics.resume(output_directory,
-                            dim,
-                            root,
-                            StepStatisticsCollector<dim>(statistics_view()).supports(),
-                            statistics_state);
-          solution_output.write_pvd(output_directory);
+          view.output_directory = view.cycle_directory(view.cycle);
+          view.statistics.resume(
+              view.output_directory, dim, root, view.statistics_supports(), statistics_state);
+          view.solution_output.write_pvd(view.output_directory);
         }
       catch (const std::exception &e)
         {
-          output_directory = base;
+          view.output_directory = base;
           throw InputError("--resume: the output files in " + base +
                            " do not match the checkpoint in " + find_checkpoint(base) + ": " +
                            e.what());
         }
     });
-    output_directory = base;
+    view.output_directory = base;
   }
 
   template <int dim>
   unsigned long
-  ContactProblem<dim>::cycles_log_bytes() const
+  Checkpoint<dim>::cycles_log_bytes() const
   {
-    const std::string log = run_directory + "/refinement_cycles.csv";
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0 && std::filesystem::exists(log))
+    const std::string log = view.run_directory + "/refinement_cycles.csv";
+    if (Utilities::MPI::this_mpi_process(view.communicator) == 0 && std::filesystem::exists(log))
       return std::filesystem::file_size(log);
     return 0;
   }
 
   template <int dim>
   std::vector<double>
-  ContactProblem<dim>::face_segments_list() const
+  Checkpoint<dim>::face_segments_list() const
   {
     // per face: the number of points, their coordinates, their weights
     std::vector<double> segments;
-    for (const auto &face : contact_faces)
+    for (const auto &face : view.contact_faces)
       {
         const unsigned int n = face.segments ? face.segments->size() : 0;
         segments.push_back(n);
@@ -534,15 +534,15 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::restore_segments(const std::vector<double> &segments)
+  Checkpoint<dim>::restore_segments(const std::vector<double> &segments)
   {
     // the faces of the checkpoint's mesh, in the same order: each one's rule,
     // a whole number of points whose coordinates and weights the list holds
     std::size_t  k     = 0;
     unsigned int first = 0;
-    for (unsigned int f = 0; f < contact_faces.size(); ++f)
+    for (unsigned int f = 0; f < view.contact_faces.size(); ++f)
       {
-        auto        &face     = contact_faces[f];
+        auto        &face     = view.contact_faces[f];
         const double n_points = k < segments.size() ? segments[k++] : -1.;
         if (!(n_points >= 0. && n_points == std::floor(n_points) &&
               n_points <= static_cast<double>((segments.size() - k) / dim)))
@@ -564,24 +564,22 @@ namespace StabilizedLagrangian
         else
           face.segments = nullptr;
         face.first_point = first;
-        first += face_quadrature(face).size();
+        first += (face.segments ? *face.segments : view.contact_quadrature).size();
       }
     if (k != segments.size())
       throw InputError("it holds segments for more contact faces than the rebuilt mesh has");
-    contact_states.resize(first);
+    view.contact_states.resize(first);
   }
 
-  // Explicit instantiation of the members defined in this file (the class
-  // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                                                            \
-  template void                ContactProblem<dim>::write_checkpoint() const;                          \
-  template unsigned int        ContactProblem<dim>::restore_checkpoint();                              \
-  template void                ContactProblem<dim>::restore_segments(const std::vector<double> &);     \
-  template void                ContactProblem<dim>::replay_refinements();                              \
-  template void                ContactProblem<dim>::continue_outputs(unsigned long,                    \
-                                                      const StatisticsWriter::State &); \
-  template unsigned long       ContactProblem<dim>::cycles_log_bytes() const;                          \
-  template std::vector<double> ContactProblem<dim>::face_segments_list() const;
+  // Explicit instantiation of the members defined in this file.
+#define SL_INSTANTIATE(dim)                                                                        \
+  template void         Checkpoint<dim>::write() const;                                            \
+  template unsigned int Checkpoint<dim>::restore();                                                \
+  template void         Checkpoint<dim>::restore_segments(const std::vector<double> &);            \
+  template void         Checkpoint<dim>::replay_refinements();                                     \
+  template void Checkpoint<dim>::continue_outputs(unsigned long, const StatisticsWriter::State &); \
+  template unsigned long       Checkpoint<dim>::cycles_log_bytes() const;                          \
+  template std::vector<double> Checkpoint<dim>::face_segments_list() const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

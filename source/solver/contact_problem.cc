@@ -158,7 +158,7 @@ namespace StabilizedLagrangian
     std::ostringstream used;
     prm.print_parameters(used, ParameterHandler::PRM);
     parameters_used = used.str();
-    register_run_state();
+    checkpoint.register_run_state();
   }
 
   template <int dim>
@@ -172,7 +172,7 @@ namespace StabilizedLagrangian
     setup();
     if (!resume)
       solution_output.prepare_directory(output_directory);
-    const unsigned int first_cycle = resume ? restore_checkpoint() : 0;
+    const unsigned int first_cycle = resume ? checkpoint.restore() : 0;
     // the estimate of the restored (converged) state, which the cycle's row
     // and the summary report if the checkpoint ended the cycle's load path
     if (resume)

@@ -307,7 +307,7 @@ namespace StabilizedLagrangian
           StepStatisticsCollector<dim>(statistics_view()).collect(stats);
         },
         [this](StepStatistics &stats) { estimate_error(stats); },
-        [this]() { write_checkpoint(); },
+        [this]() { checkpoint.write(); },
         [this]() { return run_log_view(); }};
   }
 

@@ -10,9 +10,11 @@
 namespace StabilizedLagrangian
 {
   // The run's state, listed once (RunState): what a step cut restores and a
-  // checkpoint keeps. Each entry checks what it reads from a checkpoint, which
-  // is untrusted input (source/solver/checkpoint.cc); the mesh the state lives
-  // on (its refinements) is the checkpoint's own header.
+  // checkpoint keeps. Checkpoint (solver/checkpoint.h) adds the problem's own
+  // entries through the view ContactProblem::checkpoint_view() builds here.
+  // Each entry checks what it reads from a checkpoint, which is untrusted
+  // input (source/solver/checkpoint.cc); the mesh the state lives on (its
+  // refinements) is the checkpoint's own header.
 
   namespace
   {
@@ -127,15 +129,53 @@ namespace StabilizedLagrangian
   } // namespace
 
   template <int dim>
-  RunState &
-  ContactProblem<dim>::run_state()
+  typename Checkpoint<dim>::View
+  ContactProblem<dim>::checkpoint_view()
   {
-    return state_list;
+    return typename Checkpoint<dim>::View{
+        mpi_communicator,
+        pcout,
+        state_list,
+        parameters_used,
+        adaptive_refinement,
+        chosen,
+        contact_zones,
+        run_directory,
+        output_directory,
+        cycle,
+        triangulation,
+        refinement_history,
+        n_u,
+        n_multipliers,
+        locally_owned,
+        contact_quadrature,
+        time,
+        controller,
+        work,
+        path_start_work,
+        last_normal_force,
+        last_step_size,
+        solution,
+        ghosted_solution,
+        step_start,
+        last_increment,
+        material_history,
+        contact_faces,
+        contact_states,
+        conditions,
+        active_set,
+        cumulative_slip,
+        solution_output,
+        statistics,
+        [this]() { update_ghosts(); },
+        [this]() { setup_after_refinement(); },
+        [this](const unsigned int k) { return refinement_cycles.directory(k); },
+        [this]() { return StepStatisticsCollector<dim>(statistics_view()).supports(); }};
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::register_run_state()
+  Checkpoint<dim>::register_run_state()
   {
     register_load_stepping_state();
     register_field_state();
@@ -145,73 +185,81 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  ContactProblem<dim>::register_load_stepping_state()
+  Checkpoint<dim>::register_load_stepping_state()
   {
-    state_list.add_value<double>("time", time, Scope::step_cut_and_checkpoint, [](const double t) {
-      return std::isfinite(t) && t >= 0.;
-    });
+    RunState &state_list = view.state_list;
+    state_list.add_value<double>("time",
+                                 view.time,
+                                 Scope::step_cut_and_checkpoint,
+                                 [](const double t) { return std::isfinite(t) && t >= 0.; });
     // the load stepping changes only when a step is accepted or cut
     state_list.add_value<LoadStepController::State>(
-        "load stepping", controller, Scope::checkpoint_only, [](const auto &c) {
+        "load stepping", view.controller, Scope::checkpoint_only, [](const auto &c) {
           return std::isfinite(c.step_size) && c.step_size > 0.;
         });
-    state_list.add_value<WorkCounters>("work", work, Scope::checkpoint_only, finite_work);
+    state_list.add_value<WorkCounters>("work", view.work, Scope::checkpoint_only, finite_work);
     state_list.add_value<WorkCounters>(
-        "work before the load path", path_start_work, Scope::checkpoint_only, finite_work);
+        "work before the load path", view.path_start_work, Scope::checkpoint_only, finite_work);
     state_list.add_value<double>("last normal force",
-                                 last_normal_force,
+                                 view.last_normal_force,
                                  Scope::checkpoint_only,
                                  [](const double f) { return std::isfinite(f); });
     state_list.add_value<double>("last step size",
-                                 last_step_size,
+                                 view.last_step_size,
                                  Scope::checkpoint_only,
                                  [](const double h) { return std::isfinite(h) && h >= 0.; });
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::register_field_state()
+  Checkpoint<dim>::register_field_state()
   {
+    RunState &state_list = view.state_list;
     // the solution's owned entries; its ghosts follow
     state_list.add(
         "solution",
         Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(owned_values(solution, locally_owned)); },
+        [this](StateWriter &out) { out.put(owned_values(view.solution, view.locally_owned)); },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, locally_owned.n_elements(), "solution values");
+          auto values = read_values(in, view.locally_owned.n_elements(), "solution values");
           return [this, values]() {
-            set_owned_values(solution, locally_owned, values);
-            update_ghosts();
-            step_start = ghosted_solution;
+            set_owned_values(view.solution, view.locally_owned, values);
+            view.update_ghosts();
+            view.step_start = view.ghosted_solution;
           };
         },
-        RunState::copy_of(solution));
+        RunState::copy_of(view.solution));
     // the predictor's slope (`Predictor = extrapolation`), set when a step is accepted
     state_list.add(
         "last increment",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(owned_values(last_increment, locally_owned)); },
+        [this](StateWriter &out) {
+          out.put(owned_values(view.last_increment, view.locally_owned));
+        },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, locally_owned.n_elements(), "increment values");
-          return [this, values]() { set_owned_values(last_increment, locally_owned, values); };
+          auto values = read_values(in, view.locally_owned.n_elements(), "increment values");
+          return [this, values]() {
+            set_owned_values(view.last_increment, view.locally_owned, values);
+          };
         });
     // an attempt writes only trial values, committed when the step converges
     // (Materials::QuadratureHistory::commit())
     state_list.add(
         "material history",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(material_history.committed_data()); },
+        [this](StateWriter &out) { out.put(view.material_history.committed_data()); },
         [this](StateReader &in) -> std::function<void()> {
-          auto values =
-              read_values(in, material_history.committed_data().size(), "material history values");
-          return [this, values]() { material_history.restore(values); };
+          auto values = read_values(
+              in, view.material_history.committed_data().size(), "material history values");
+          return [this, values]() { view.material_history.restore(values); };
         });
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::register_contact_state()
+  Checkpoint<dim>::register_contact_state()
   {
+    RunState &state_list = view.state_list;
     // the segments set the contact points' layout: read before the points
     state_list.add(
         "contact faces",
@@ -232,80 +280,82 @@ namespace StabilizedLagrangian
             }
           return {};
         },
-        RunState::copy_of(contact_faces));
+        RunState::copy_of(view.contact_faces));
     state_list.add(
         "contact points",
         Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(contact_states); },
+        [this](StateWriter &out) { out.put(view.contact_states); },
         [this](StateReader &in) -> std::function<void()> {
           std::vector<ContactPointState<dim>> states;
           in.get(states, "contact points");
           check_contact_states(in, states);
-          return [this, states]() { contact_states = states; };
+          return [this, states]() { view.contact_states = states; };
         },
-        RunState::copy_of(contact_states));
+        RunState::copy_of(view.contact_states));
     state_list.add(
         "contact conditions",
         Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(conditions->owned_states()); },
+        [this](StateWriter &out) { out.put(view.conditions->owned_states()); },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, conditions->n_state_values(), "nodal state values");
-          return [this, values]() { conditions->restore_states(values); };
+          auto values = read_values(in, view.conditions->n_state_values(), "nodal state values");
+          return [this, values]() { view.conditions->restore_states(values); };
         },
         [this]() -> std::function<void()> {
-          std::shared_ptr<const ContactConditions<dim>> copy = conditions->copy();
-          return [this, copy]() { conditions->restore(*copy); };
+          std::shared_ptr<const ContactConditions<dim>> copy = view.conditions->copy();
+          return [this, copy]() { view.conditions->restore(*copy); };
         });
     state_list.add(
         "active set",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(active_set); },
+        [this](StateWriter &out) { out.put(view.active_set); },
         [this](StateReader &in) -> std::function<void()> {
           std::vector<Point<dim>> points;
           in.get(points, "active set points");
           if (!std::all_of(
                   points.begin(), points.end(), [](const auto &p) { return finite_tensor(p); }))
             in.damaged("its active set holds points that are not finite");
-          return [this, points]() { active_set = points; };
+          return [this, points]() { view.active_set = points; };
         });
     state_list.add(
         "accumulated slip",
         Scope::checkpoint_only,
-        [this](StateWriter &out) { out.put(cumulative_slip.list()); },
+        [this](StateWriter &out) { out.put(view.cumulative_slip.list()); },
         [this](StateReader &in) -> std::function<void()> {
           std::vector<double> slips;
           in.get(slips, "accumulated slip values");
           if (!valid_slips<dim>(slips))
             in.damaged("its accumulated slip is not a list of whole, finite entries");
-          return [this, slips]() { cumulative_slip.restore(slips); };
+          return [this, slips]() { view.cumulative_slip.restore(slips); };
         });
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::check_contact_states(StateReader                               &in,
-                                            const std::vector<ContactPointState<dim>> &states) const
+  Checkpoint<dim>::check_contact_states(StateReader                               &in,
+                                        const std::vector<ContactPointState<dim>> &states) const
   {
-    if (states.size() != contact_states.size())
+    if (states.size() != view.contact_states.size())
       in.damaged("it has " + std::to_string(states.size()) + " contact points, the rebuilt mesh " +
-                 std::to_string(contact_states.size()));
+                 std::to_string(view.contact_states.size()));
     if (!valid_states(states))
       in.damaged("its contact points' states hold invalid values");
-    const bool rigid_partner = chosen.master_boundaries.empty();
+    const bool rigid_partner = view.chosen.master_boundaries.empty();
     for (const auto &point : states)
-      if (point.zone > contact_zones.size() || (rigid_partner && point.pairing.master_face >= 0))
+      if (point.zone > view.contact_zones.size() ||
+          (rigid_partner && point.pairing.master_face >= 0))
         in.damaged("a contact point names a contact zone or master face the scene does not have");
   }
 
   template <int dim>
   void
-  ContactProblem<dim>::register_output_state()
+  Checkpoint<dim>::register_output_state()
   {
+    RunState &state_list = view.state_list;
     state_list.add(
         "pvd records",
         Scope::checkpoint_only,
         [this](StateWriter &out) {
-          const auto &records = solution_output.records();
+          const auto &records = view.solution_output.records();
           out.put(static_cast<std::uint64_t>(records.size()));
           for (const auto &[t, file] : records)
             {
@@ -324,14 +374,14 @@ namespace StabilizedLagrangian
               if (!std::isfinite(t) || !is_solution_record(record))
                 in.damaged("a .pvd record is not a time and a file solution_<step>.pvtu");
             }
-          return [this, records]() { solution_output.set_records(records); };
+          return [this, records]() { view.solution_output.set_records(records); };
         });
     // the output files continue where the checkpoint was taken (after the .pvd records)
     state_list.add(
         "output files",
         Scope::checkpoint_only,
         [this](StateWriter &out) {
-          out.put(statistics.state());
+          out.put(view.statistics.state());
           out.put(cycles_log_bytes());
         },
         [this](StateReader &in) -> std::function<void()> {
@@ -343,16 +393,16 @@ namespace StabilizedLagrangian
         });
   }
 
-  // Explicit instantiation of the members defined in this file (the class
+  // Explicit instantiation of the members defined in this file (ContactProblem
   // itself is instantiated once, in contact_problem.cc).
-#define SL_INSTANTIATE(dim)                                               \
-  template RunState &ContactProblem<dim>::run_state();                    \
-  template void      ContactProblem<dim>::register_run_state();           \
-  template void      ContactProblem<dim>::register_load_stepping_state(); \
-  template void      ContactProblem<dim>::register_field_state();         \
-  template void      ContactProblem<dim>::register_contact_state();       \
-  template void      ContactProblem<dim>::register_output_state();        \
-  template void      ContactProblem<dim>::check_contact_states(           \
+#define SL_INSTANTIATE(dim)                                                                \
+  template typename Checkpoint<dim>::View ContactProblem<dim>::checkpoint_view();          \
+  template void                           Checkpoint<dim>::register_run_state();           \
+  template void                           Checkpoint<dim>::register_load_stepping_state(); \
+  template void                           Checkpoint<dim>::register_field_state();         \
+  template void                           Checkpoint<dim>::register_contact_state();       \
+  template void                           Checkpoint<dim>::register_output_state();        \
+  template void                           Checkpoint<dim>::check_contact_states(           \
       StateReader &, const std::vector<ContactPointState<dim>> &) const;
 
   SL_INSTANTIATE(2)

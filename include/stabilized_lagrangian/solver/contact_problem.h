@@ -42,6 +42,7 @@
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
+#include <stabilized_lagrangian/solver/checkpoint.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/error_estimator.h>
 #include <stabilized_lagrangian/solver/inf_sup_test.h>
@@ -89,13 +90,15 @@ namespace StabilizedLagrangian
    * the view the log reads,
    * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
    * the Newton iteration reads, converged_step.cc what an accepted step commits,
-   * refinement.cc the views of the step's statistics
-   * (StepStatisticsCollector) and of the adaptive refinement, run_state_list.cc the run's
-   * state (what a step cut restores and a checkpoint keeps), checkpoint.cc
-   * checkpoints. The load path on one mesh is LoadPath's (solver/load_path.h),
-   * the adaptive refinement cycles around it RefinementCycles'
-   * (solver/refinement_cycles.h). The loops of seed §2.2 are NestedLoops'
-   * (solver/nested_loops.h), the Newton iteration they call NewtonSolver's
+   * refinement.cc the views of the step's statistics (StepStatisticsCollector)
+   * and of the adaptive refinement, run_state_list.cc the view the checkpoints
+   * read. The checkpoints and the problem's entries of the run's state (what a
+   * step cut restores and a checkpoint keeps) are Checkpoint's
+   * (solver/checkpoint.h: checkpoint.cc, run_state_list.cc). The load path on
+   * one mesh is LoadPath's (solver/load_path.h), the adaptive refinement cycles
+   * around it RefinementCycles' (solver/refinement_cycles.h). The loops of seed
+   * §2.2 are NestedLoops' (solver/nested_loops.h), the Newton iteration they
+   * call NewtonSolver's
    * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
    * newton_line_search.cc); the log of the load path and run_summary.csv are
    * written by RunLog (solver/run_log.h), the output files are written by SolutionOutput
@@ -127,18 +130,21 @@ namespace StabilizedLagrangian
      * @brief Solve the load path on each mesh of the refinement cycles
      * (contact_problem.cc, RefinementCycles); returns false if a step could not be solved.
      * @param resume continue from the checkpoint in the output directory
-     * (source/solver/checkpoint.cc) instead of starting from rest
+     * (Checkpoint::restore()) instead of starting from rest
      */
     bool
     run(const bool resume = false);
 
     /**
-     * @brief The run's state, listed once (source/solver/run_state_list.cc
-     * lists the problem's own): what a step cut restores and a checkpoint
-     * keeps. An extension adds the state it keeps here, before run().
+     * @brief The run's state, listed once (Checkpoint lists the problem's
+     * own, source/solver/run_state_list.cc): what a step cut restores and a
+     * checkpoint keeps. An extension adds the state it keeps here, before run().
      */
     RunState &
-    run_state();
+    run_state()
+    {
+      return state_list;
+    }
 
     /**
      * @brief Called at the start of every attempt of a load step, with the
@@ -323,12 +329,6 @@ namespace StabilizedLagrangian
     /** What the refinement cycles read and write of this problem, and what they ask of it. */
     typename RefinementCycles<dim>::View
     refinement_cycles_view();
-    /** The output directory of cycle @p k (RefinementCycles::directory()). */
-    std::string
-    cycle_directory(const unsigned int k) const
-    {
-      return refinement_cycles.directory(k);
-    }
 
     // --- run_log.cc: the log of the load path and run_summary.csv (RunLog) ---
     /** What the log of the load path reads of this problem, now. */
@@ -349,57 +349,10 @@ namespace StabilizedLagrangian
     typename NewtonSolver<dim>::View
     newton_view();
 
-    // --- checkpoint.cc: checkpoints ---
-    /** Write a checkpoint of the current state (every rank), replacing the previous one. */
-    void
-    write_checkpoint() const;
-    /**
-     * Rebuild the mesh and restore the state of the checkpoint in the output
-     * directory (after setup()); returns the adaptive refinement cycle it was taken in.
-     */
-    unsigned int
-    restore_checkpoint();
-    /**
-     * The contact faces' segment rules of a checkpoint (per face: the number
-     * of points, their coordinates, their weights), and the contact points laid
-     * out for them: the segments follow the configuration of the checkpoint,
-     * not the mesh's initial one.
-     */
-    void
-    restore_segments(const std::vector<double> &segments);
-    /** The size of refinement_cycles.csv (rank 0; 0 elsewhere). */
-    unsigned long
-    cycles_log_bytes() const;
-    /** The contact faces' segment rules, as restore_segments() reads them. */
-    std::vector<double>
-    face_segments_list() const;
-
-    // --- run_state_list.cc: the run's state, listed once ---
-    /** Add the problem's own state to the list, in the order it is read back. */
-    void
-    register_run_state();
-    /** The time, the load stepping, the work counters, the last force and step size. */
-    void
-    register_load_stepping_state();
-    /** The solution, the predictor's last increment, the material history. */
-    void
-    register_field_state();
-    /** The contact faces' segments, the points' and the nodes' states, the slip. */
-    void
-    register_contact_state();
-    /** What the output files continue from: the .pvd records, the CSV files' sizes. */
-    void
-    register_output_state();
-    /** Whether contact point states read from a checkpoint fit the scene (InputError). */
-    void
-    check_contact_states(StateReader &in, const std::vector<ContactPointState<dim>> &states) const;
-    /** Refine the mesh again as refinement_history lists it, cell by cell. */
-    void
-    replay_refinements();
-    /** Cut the output files back to the checkpoint's rows and continue them. */
-    void
-    continue_outputs(const unsigned long            cycles_bytes,
-                     const StatisticsWriter::State &statistics_state);
+    // --- run_state_list.cc: the view the checkpoints read (Checkpoint) ---
+    /** What the checkpoints and the run's state list read and write of this problem. */
+    typename Checkpoint<dim>::View
+    checkpoint_view();
 
     // --- contact_problem.cc: the mesh (BodyMesh), and the setup after each refinement ---
     /** Build the mesh, resolve the boundaries and bodies the input names on it, check them. */
@@ -858,6 +811,8 @@ namespace StabilizedLagrangian
     NewtonSolver<dim> newton{newton_view()};
     /** the loops of seed §2.2 around it: geometry → friction threshold → status */
     NestedLoops<dim> nested_loops{nested_loops_view()};
+    /** the checkpoints, and the problem's own entries of state_list */
+    Checkpoint<dim> checkpoint{checkpoint_view()};
     /** the load path on the current mesh, and the clock of `Load stepping/Wall time limit` */
     LoadPath<dim> load_path{load_path_view()};
     /** the adaptive refinement cycles around it */
