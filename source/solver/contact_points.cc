@@ -59,7 +59,7 @@ namespace StabilizedLagrangian
     // Axisymmetric: w_a = ∫_F ℓ_a 2πr dΓ, positive also at a node on the axis,
     // where the Gauss–Lobatto weight 2πr·J vanishes.
     if (contact_parameters.quadrature != Parameters::ContactQuadrature::gauss_lobatto ||
-        (dim == 3 && simplex_mesh()))
+        (dim == 3 && body_mesh.simplex()))
       return;
     const unsigned int n_1d =
         static_cast<unsigned int>(std::lround(std::pow(contact_quadrature.size(), 1. / (dim - 1))));
@@ -90,16 +90,16 @@ namespace StabilizedLagrangian
           {
             for (unsigned int g = 0; g < gauss.size(); ++g)
               weights[q] += shape(q, g) * gauss_values.JxW(g) *
-                            radial_weight(gauss_values.quadrature_point(g));
+                            spaces.radial_weight(gauss_values.quadrature_point(g));
             difference = std::max(
                 difference,
-                std::abs(weights[q] -
-                         nodal_values.JxW(q) * radial_weight(nodal_values.quadrature_point(q))));
+                std::abs(weights[q] - nodal_values.JxW(q) *
+                                          spaces.radial_weight(nodal_values.quadrature_point(q))));
             smallest = std::min(smallest, weights[q]);
           }
         // (a face so distorted that a weight is not positive keeps the lumped ones)
         if (difference > 1e-12 * face.cell->face(face.face_no)->measure() *
-                             radial_weight(face.cell->face(face.face_no)->center()) &&
+                             spaces.radial_weight(face.cell->face(face.face_no)->center()) &&
             smallest > 0.)
           face.nodal_weights = std::make_shared<const std::vector<double>>(weights);
       }

@@ -146,10 +146,10 @@ namespace StabilizedLagrangian
     // the elements from the start: the boundary conditions' view
     // (boundary_view()) reads the displacement's before the first DoFs are set up
     fe_u                    = fe_pair->displacement_element();
-    fe_m                    = fe_pair->multiplier_element(any_friction() ? dim : 1);
+    fe_m                    = fe_pair->multiplier_element(contact_zones.any_friction() ? dim : 1);
     multiplier_dofs_on_face = dofs_on_each_face(*fe_m);
     choose_complementarity();
-    if (!contact_zones.empty() && weighted_complementarity())
+    if (!contact_zones.empty() && chosen.weighted_complementarity())
       throw InputError("Contact/Zone " + contact_zones.begin()->name +
                        ": contact zones with their own friction law are built for the "
                        "pointwise conditions only; use Contact/Complementarity = pointwise.");
@@ -205,7 +205,9 @@ namespace StabilizedLagrangian
     // or Tresca law never moves the threshold
     loops.set_pairing(partner->has_pairing_derivatives(), partner->is_flat());
     loops.set_can_change(Loop::geometry, !(partner->is_flat() && !body_response.finite_strain()));
-    loops.set_can_change(Loop::friction, any_friction() && any_pressure_dependent_threshold());
+    loops.set_can_change(Loop::friction,
+                         contact_zones.any_friction() &&
+                             contact_zones.any_pressure_dependent_threshold());
     SceneChecks<dim>(scene_view()).warn_before_run();
   }
 
@@ -262,17 +264,17 @@ namespace StabilizedLagrangian
   ContactProblem<dim>::check_cell_shape() const
   {
     const std::string pair = "Contact/Finite element pair = " + contact_parameters.fe_pair;
-    if (fe_pair->simplex() && !simplex_mesh())
+    if (fe_pair->simplex() && !body_mesh.simplex())
       throw InputError(pair + " is for triangles / tetrahedra; the mesh has " +
                        (dim == 2 ? "quadrilaterals" : "hexahedra") +
                        ": use a Q pair (Q1/P1, Q2/P1, Q2/P2, ...) or a simplex mesh "
                        "(Geometry/.../Cell shape = simplex, or a Gmsh mesh of " +
                        (dim == 2 ? "triangles)." : "tetrahedra)."));
-    if (!fe_pair->simplex() && simplex_mesh())
+    if (!fe_pair->simplex() && body_mesh.simplex())
       throw InputError(pair + " is for quadrilaterals / hexahedra; the mesh has " +
                        (dim == 2 ? "triangles" : "tetrahedra") +
                        ": use a P pair (P1/P1, P2/P1, P2/P2, or P1/P2 to see an unstable one).");
-    if (fe_pair->dual_multiplier() && !weighted_complementarity())
+    if (fe_pair->dual_multiplier() && !chosen.weighted_complementarity())
       throw InputError(pair +
                        " has dual multipliers, whose conditions hold node by node: set "
                        "Contact/Complementarity = weighted, or choose the pair without 'dual'.");
@@ -296,7 +298,7 @@ namespace StabilizedLagrangian
                            "/Volumetric formulation: F-bar and mixed are built for plane strain "
                            "and 3D; an axisymmetric model (Geometry/Axisymmetric = true) uses "
                            "Volumetric formulation = displacement.");
-    if (!simplex_mesh())
+    if (!body_mesh.simplex())
       return;
     for (const auto &material : body_response.slots())
       if (material.volumetric == Materials::BodyMaterial<dim>::Volumetric::mixed &&

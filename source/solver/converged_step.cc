@@ -32,7 +32,7 @@ namespace StabilizedLagrangian
     // of the two degrees (the vertices for Q1/P1, also the midsides for
     // quadratic pairs; on triangle faces the vertices only: see face_nodes())
     const Quadrature<dim - 1> node_quadrature = body_mesh.face_nodes(
-        (dim == 3 && simplex_mesh())
+        (dim == 3 && body_mesh.simplex())
             ? 1u
             : std::max({fe_pair->displacement_degree(), fe_pair->multiplier_degree(), 1u}));
     FaceEvaluator evaluator(spaces, node_quadrature, false);
@@ -87,7 +87,7 @@ namespace StabilizedLagrangian
                            dof_handler_u,
                            u,
                            fe_pair->displacement_degree(),
-                           simplex_mesh(),
+                           body_mesh.simplex(),
                            axisymmetric,
                            averages,
                            error_indicators,

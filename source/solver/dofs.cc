@@ -224,7 +224,7 @@ namespace StabilizedLagrangian
                                                  n_multipliers,
                                                  chosen.contact_boundaries,
                                                  *partner,
-                                                 any_friction(),
+                                                 contact_zones.any_friction(),
                                                  axisymmetric,
                                                  mpi_communicator,
                                                  boundary_view(),

@@ -270,20 +270,21 @@ namespace StabilizedLagrangian
   typename NestedLoops<dim>::View
   ContactProblem<dim>::nested_loops_view()
   {
-    return typename NestedLoops<dim>::View{solver_parameters,
-                                           output_parameters.log_newton,
-                                           mpi_communicator,
-                                           pcout,
-                                           timer,
-                                           locally_owned_u,
-                                           solution,
-                                           bounds,
-                                           conditions,
-                                           loops,
-                                           contact_start,
-                                           newton,
-                                           [this]() { update_pairings(true); },
-                                           [this]() { return any_pressure_dependent_threshold(); }};
+    return typename NestedLoops<dim>::View{
+        solver_parameters,
+        output_parameters.log_newton,
+        mpi_communicator,
+        pcout,
+        timer,
+        locally_owned_u,
+        solution,
+        bounds,
+        conditions,
+        loops,
+        contact_start,
+        newton,
+        [this]() { update_pairings(true); },
+        [this]() { return contact_zones.any_pressure_dependent_threshold(); }};
   }
 
   // Explicit instantiation of the members defined in this file.

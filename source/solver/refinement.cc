@@ -21,25 +21,25 @@ namespace StabilizedLagrangian
   typename StepStatisticsCollector<dim>::View
   ContactProblem<dim>::statistics_view()
   {
-    return
-        typename StepStatisticsCollector<dim>::View{solution,
-                                                    system_rhs,
-                                                    locally_owned_u,
-                                                    owned_multiplier_components,
-                                                    multiplier_length_weights,
-                                                    *conditions,
-                                                    solver_parameters.friction_tolerance,
-                                                    internal_force,
-                                                    external_force,
-                                                    contact_residual,
-                                                    boundary_conditions,
-                                                    boundary_view(),
-                                                    face_gauss(fe_pair->displacement_degree() + 1),
-                                                    contact_zones,
-                                                    force_unit(true),
-                                                    mpi_communicator,
-                                                    [this]() { return ghosted_displacement(); },
-                                                    active_set};
+    return typename StepStatisticsCollector<dim>::View{
+        solution,
+        system_rhs,
+        locally_owned_u,
+        owned_multiplier_components,
+        multiplier_length_weights,
+        *conditions,
+        solver_parameters.friction_tolerance,
+        internal_force,
+        external_force,
+        contact_residual,
+        boundary_conditions,
+        boundary_view(),
+        body_mesh.face_gauss(fe_pair->displacement_degree() + 1),
+        contact_zones,
+        force_unit(true),
+        mpi_communicator,
+        [this]() { return ghosted_displacement(); },
+        active_set};
   }
 
   template <int dim>

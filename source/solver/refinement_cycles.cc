@@ -282,7 +282,7 @@ namespace StabilizedLagrangian
         [this]() { MeshRefinement<dim>(refinement_view()).refine(); },
         [this]() { return inf_sup_view(); },
         [this]() { return ghosted_displacement(); },
-        [this](const Point<dim> &x) { return radial_weight(x); }};
+        [this](const Point<dim> &x) { return spaces.radial_weight(x); }};
   }
 
   // Explicit instantiation of the members defined in this file.

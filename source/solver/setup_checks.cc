@@ -27,8 +27,8 @@ namespace StabilizedLagrangian
             [this](const typename Triangulation<dim>::cell_iterator &cell)
                 -> const Materials::Interface<dim> & { return body_response.material_of(cell); },
             axisymmetric,
-            any_friction(),
-            simplex_mesh()};
+            contact_zones.any_friction(),
+            body_mesh.simplex()};
   }
 
   template <int dim>
@@ -43,7 +43,8 @@ namespace StabilizedLagrangian
             n_u,
             cell_quadrature,
             // a Gauss rule exact for both
-            face_gauss(std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1),
+            body_mesh.face_gauss(
+                std::max(fe_pair->displacement_degree(), fe_pair->multiplier_degree()) + 1),
             [this](AffineConstraints<double> &constraints) {
               SystemConstraints<dim>(constraints_view()).add_homogeneous_dirichlet(constraints);
             },

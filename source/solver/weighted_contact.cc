@@ -49,7 +49,7 @@ namespace StabilizedLagrangian
             for (unsigned int r = 0; r < n; ++r)
               mass(p, r) += values.shape_value(node_shapes[p], q) *
                             values.shape_value(node_shapes[r], q) * values.JxW(q) *
-                            radial_weight(values.quadrature_point(q));
+                            spaces.radial_weight(values.quadrature_point(q));
         Vector<double> row_sums(n);
         for (unsigned int p = 0; p < n; ++p)
           for (unsigned int r = 0; r < n; ++r)
@@ -110,9 +110,10 @@ namespace StabilizedLagrangian
       choice = {Conditions::pointwise,
                 "adaptive refinement of a 3D contact surface makes hanging nodes"};
     chosen.complementarity = choice.first;
-    complementarity_choice = "Complementarity = automatic: " +
-                             std::string(weighted_complementarity() ? "weighted" : "pointwise") +
-                             " (" + choice.second + ")";
+    complementarity_choice =
+        "Complementarity = automatic: " +
+        std::string(chosen.weighted_complementarity() ? "weighted" : "pointwise") + " (" +
+        choice.second + ")";
   }
 
   template <int dim>
@@ -123,7 +124,7 @@ namespace StabilizedLagrangian
     // mesh) is no node of its own: its conditions would have to be split
     // among its masters, which the nodal conditions do not do.
     int constrained = 0;
-    if (weighted_complementarity())
+    if (chosen.weighted_complementarity())
       for (const auto index : locally_relevant)
         if (index >= n_u && hanging_constraints.is_constrained(index))
           constrained = 1;
@@ -142,21 +143,21 @@ namespace StabilizedLagrangian
         pcout << complementarity_choice << "\n";
         complementarity_choice.clear();
       }
-    if (weighted_complementarity() && constrained == 1)
+    if (chosen.weighted_complementarity() && constrained == 1)
       throw InputError(
           "Contact/Complementarity = weighted needs every multiplier node of the contact "
           "surface free, but this mesh and pair constrain some (hanging nodes on the contact "
           "surface from local refinement, or a pair with the multiplier on a coarser mesh). "
           "Refine the contact surface uniformly, choose another pair, or use "
           "Complementarity = pointwise.");
-    if (weighted_complementarity() && dim == 3 && simplex_mesh() &&
+    if (chosen.weighted_complementarity() && dim == 3 && body_mesh.simplex() &&
         fe_pair->multiplier_degree() > 1)
       throw InputError("Contact/Complementarity = weighted needs a multiplier whose basis "
                        "functions have a positive integral, but the quadratic multiplier on "
                        "the triangle faces of tetrahedra has zero integrals at the vertices. "
                        "Use a P1 multiplier (Finite element pair = P2/P1 or P1/P1) or "
                        "Complementarity = pointwise.");
-    conditions = make_contact_conditions(weighted_complementarity(), conditions_data());
+    conditions = make_contact_conditions(chosen.weighted_complementarity(), conditions_data());
     conditions->setup();
   }
 

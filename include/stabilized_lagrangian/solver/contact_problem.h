@@ -291,11 +291,6 @@ namespace StabilizedLagrangian
     face_segments(const FaceEvaluator &corners) const;
 
     // --- weighted_contact.cc: the choice of the contact conditions ---
-    bool
-    weighted_complementarity() const
-    {
-      return chosen.weighted_complementarity();
-    }
     /**
      * @brief `Complementarity = automatic`: weighted for two deformable bodies
      * and dual pairs, pointwise against a rigid obstacle and where weighted does
@@ -361,40 +356,6 @@ namespace StabilizedLagrangian
     /** Refuse a pair for the other cell shape, and what simplex meshes cannot do yet. */
     void
     check_cell_shape() const;
-    /** Whether the cells are triangles / tetrahedra (BodyMesh::simplex()). */
-    bool
-    simplex_mesh() const
-    {
-      return body_mesh.simplex();
-    }
-    /**
-     * The measure of the model at @p x: 2πr (r = x₁) in an axisymmetric model,
-     * whose integrals are over the solid of revolution (forces are totals over
-     * the circumference), 1 otherwise (2D: per unit thickness).
-     */
-    double
-    radial_weight(const Point<dim> &x) const
-    {
-      return spaces.radial_weight(x);
-    }
-    /** The reference cell of the mesh's cells (BodyMesh::cell_shape()). */
-    ReferenceCell
-    cell_shape() const
-    {
-      return body_mesh.cell_shape();
-    }
-    /** The Gauss rule of the cells with @p n points per direction (BodyMesh::cell_gauss()). */
-    Quadrature<dim>
-    cell_gauss(const unsigned int n) const
-    {
-      return body_mesh.cell_gauss(n);
-    }
-    /** The Gauss rule of the faces with @p n points per direction (BodyMesh::face_gauss()). */
-    Quadrature<dim - 1>
-    face_gauss(const unsigned int n) const
-    {
-      return body_mesh.face_gauss(n);
-    }
     /** DoFs, sparsity, contact points and history after the mesh changed. */
     void
     setup_after_refinement();
@@ -670,18 +631,6 @@ namespace StabilizedLagrangian
     friction_law_of(const ContactPointState<dim> &state) const override
     {
       return contact_zones.law_of(state.zone);
-    }
-    /** Whether some zone has friction (then Λ exists on the whole of Γc). */
-    bool
-    any_friction() const
-    {
-      return contact_zones.any_friction();
-    }
-    /** Whether some zone's threshold depends on the pressure (then the friction loop iterates). */
-    bool
-    any_pressure_dependent_threshold() const
-    {
-      return contact_zones.any_pressure_dependent_threshold();
     }
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
     Materials::QuadratureHistory                 material_history;
