@@ -144,8 +144,8 @@ namespace StabilizedLagrangian
                              nullptr,
                              face.dual_basis};
         cut_face.segments                   = face_segments(ends);
-        const Quadrature<dim - 1> &old_rule = face_quadrature(face);
-        const Quadrature<dim - 1> &new_rule = face_quadrature(cut_face);
+        const Quadrature<dim - 1> &old_rule = face.points(contact_quadrature);
+        const Quadrature<dim - 1> &new_rule = cut_face.points(contact_quadrature);
         bool                       same     = old_rule.size() == new_rule.size();
         for (unsigned int q = 0; q < new_rule.size() && same; ++q)
           same = old_rule.point(q).distance(new_rule.point(q)) < 1e-12;

@@ -383,7 +383,7 @@ namespace StabilizedLagrangian
     // (a rigid obstacle's pairings have no face)
     int left = sparsity_master_faces.size() != contact_faces.size();
     for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
-      for (unsigned int q = 0; q < face_quadrature(contact_faces[c]).size(); ++q)
+      for (unsigned int q = 0; q < contact_faces[c].points(contact_quadrature).size(); ++q)
         {
           const auto &faces = sparsity_master_faces[c];
           const int   m     = contact_states[contact_faces[c].first_point + q].pairing.master_face;

@@ -425,9 +425,9 @@ namespace StabilizedLagrangian
     const ContactPointLaw<dim>                  &law = view.law;
     for (const auto &face : view.contact_faces)
       {
-        if (!face_values || &face_quadrature(face) != rule)
+        if (!face_values || &face.points(view.contact_quadrature) != rule)
           {
-            rule        = &face_quadrature(face);
+            rule        = &face.points(view.contact_quadrature);
             face_values = std::make_unique<FEFaceValues<dim>>(
                 view.displacement_fe,
                 *rule,

@@ -413,7 +413,7 @@ namespace StabilizedLagrangian
         mpi_communicator,
         pcout,
         timer,
-        force_unit(false),
+        force_unit(dim, axisymmetric, false),
         locally_owned,
         locally_owned_u,
         newton_constraints,

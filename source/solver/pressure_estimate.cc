@@ -123,7 +123,7 @@ namespace StabilizedLagrangian
                                          const Tensor<1, dim>   &normal,
                                          const double            master_compliance) const
   {
-    const unsigned int n_points     = face_quadrature(face).size();
+    const unsigned int n_points     = face.points(view.contact_quadrature).size();
     const auto         state        = view.contact_states.begin() + face.first_point;
     const auto         n_in_contact = static_cast<unsigned int>(
         std::count_if(state, state + n_points, [](const auto &s) { return s.in_contact; }));

@@ -36,7 +36,7 @@ namespace StabilizedLagrangian
         boundary_view(),
         body_mesh.face_gauss(fe_pair->displacement_degree() + 1),
         contact_zones,
-        force_unit(true),
+        force_unit(dim, axisymmetric, true),
         mpi_communicator,
         [this]() { return ghosted_displacement(); },
         active_set};

@@ -261,7 +261,7 @@ namespace StabilizedLagrangian
         pcout,
         timer,
         run_directory,
-        force_unit(true),
+        force_unit(dim, axisymmetric, true),
         triangulation,
         n_u,
         n_multipliers,

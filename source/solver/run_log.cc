@@ -283,7 +283,7 @@ namespace StabilizedLagrangian
                                       inf_sup,
                                       time,
                                       load_stepping.end_time,
-                                      force_unit(false),
+                                      force_unit(dim, axisymmetric, false),
                                       statistics,
                                       last_step,
                                       work,

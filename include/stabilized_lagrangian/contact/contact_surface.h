@@ -182,6 +182,13 @@ namespace StabilizedLagrangian
      * index of the multiplier element); null: the standard basis.
      */
     std::shared_ptr<const FullMatrix<double>> dual_basis;
+
+    /** The contact points of this face: its segments' rule, else @p contact_quadrature. */
+    const Quadrature<dim - 1> &
+    points(const Quadrature<dim - 1> &contact_quadrature) const
+    {
+      return segments ? *segments : contact_quadrature;
+    }
   };
 
   /**

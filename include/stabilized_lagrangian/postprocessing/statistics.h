@@ -30,6 +30,18 @@ namespace StabilizedLagrangian
    * "Nested loops"). A statistic is a member here and its column in the table
    * of statistics.cc, which writes both the header and the rows.
    */
+  /**
+   * The unit of forces of a model: N in 3D and axisymmetric, else per unit
+   * thickness (plane strain) N/mm; @p column: as a column name's suffix, N_per_mm.
+   */
+  inline std::string
+  force_unit(const int dim, const bool axisymmetric, const bool column)
+  {
+    if (dim == 3 || axisymmetric)
+      return "N";
+    return column ? "N_per_mm" : "N/mm";
+  }
+
   struct StepStatistics
   {
     unsigned int step                = 0;

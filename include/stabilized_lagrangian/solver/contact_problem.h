@@ -271,12 +271,6 @@ namespace StabilizedLagrangian
   private:
     /** One face of Γc on a locally owned cell (contact_surface.h). */
     using ContactFace = StabilizedLagrangian::ContactFace<dim>;
-    /** The contact points of @p face. */
-    const Quadrature<dim - 1> &
-    face_quadrature(const ContactFace &face) const
-    {
-      return face.segments ? *face.segments : contact_quadrature;
-    }
 
     /** The evaluation of the fields on one contact face (contact_surface.h). */
     using FaceEvaluator = StabilizedLagrangian::FaceEvaluator<dim>;
@@ -521,17 +515,6 @@ namespace StabilizedLagrangian
     /** What the statistics of a converged step read and write of this problem. */
     typename StepStatisticsCollector<dim>::View
     statistics_view();
-    /**
-     * The unit of forces: N, or per unit thickness in plane strain, N/mm
-     * (@p column: as a column name's suffix, N_per_mm).
-     */
-    std::string
-    force_unit(const bool column) const
-    {
-      if (dim == 3 || axisymmetric)
-        return "N";
-      return column ? "N_per_mm" : "N/mm";
-    }
     /** The displacement block of the iterate, on the displacement DoFHandler (ghosted). */
     TrilinosWrappers::MPI::Vector
     ghosted_displacement() const;

@@ -158,12 +158,6 @@ namespace StabilizedLagrangian
     {
       return view.cell_shape.face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(n);
     }
-    /** The contact points of @p face. */
-    const Quadrature<dim - 1> &
-    face_quadrature(const ContactFace<dim> &face) const
-    {
-      return face.segments ? *face.segments : view.contact_quadrature;
-    }
     /**
      * First Piola–Kirchhoff stress of @p cell's material for @p grad_u at
      * @p point, with the history of the cell's quadrature point nearest to it
