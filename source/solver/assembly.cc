@@ -519,7 +519,7 @@ namespace StabilizedLagrangian
                                                contact_faces,
                                                partner,
                                                conditions,
-                                               *this,
+                                               law,
                                                newton_constraints,
                                                hanging_constraints,
                                                dirichlet_increment,

@@ -32,8 +32,8 @@ namespace StabilizedLagrangian
     contact_states.assign(n_points, ContactPointState<dim>());
     contact_zones.assign(contact_faces, contact_quadrature, contact_states);
     for (auto &state : contact_states)
-      if (!friction_law_of(state).threshold_depends_on_pressure())
-        state.friction_threshold = friction_law_of(state).threshold(0.);
+      if (!law.friction_law_of(state).threshold_depends_on_pressure())
+        state.friction_threshold = law.friction_law_of(state).threshold(0.);
     setup_contact_conditions();
 
     // initial statuses from the initial configuration: touching points are in contact
@@ -227,64 +227,6 @@ namespace StabilizedLagrangian
       }
   }
 
-  template <int dim>
-  Contact::PointResponse<dim - 1>
-  ContactProblem<dim>::point_response(const ContactPointState<dim> &state,
-                                      const ContactKinematics<dim> &k) const
-  {
-    return Contact::PointResponse<dim - 1>(
-        k.contact_pressure,
-        state.pairing.gap(k.position),
-        k.semi_multiplier,
-        state.pairing.tangential_components(k.step_increment),
-        state.in_contact,
-        state.friction_threshold,
-        friction_law_of(state).has_friction(),
-        chosen.r_n,
-        chosen.r_t,
-        loops.linearised(Loop::friction)
-            ? friction_law_of(state).threshold_derivative(threshold_pressure(k.contact_pressure))
-            : 0.);
-  }
-
-  template <int dim>
-  void
-  ContactProblem<dim>::evaluate_point_state(ContactPointState<dim> &state,
-                                            ContactKinematics<dim> &k,
-                                            const PointRefresh     &what) const
-  {
-    if (what.pairing)
-      state.pairing = partner->project(k.position);
-    k.step_increment -=
-        partner->follow(state.pairing, ghosted_solution, step_start, k.position - k.step_increment);
-    if (what.threshold)
-      state.friction_threshold =
-          friction_law_of(state).threshold(threshold_pressure(k.contact_pressure));
-    if (what.status)
-      state.in_contact = status(state, k);
-  }
-
-  template <int dim>
-  bool
-  ContactProblem<dim>::status(const ContactPointState<dim> &state,
-                              const ContactKinematics<dim> &k) const
-  {
-    // A gap within round-off of zero touches: a body resting on the obstacle
-    // by a vertex placed 1e-14 mm above it must start in contact, as one at
-    // exactly zero does, or a load-controlled body has no support at all.
-    const double gap = state.pairing.gap(k.position);
-    return Contact::is_in_contact(
-        Contact::augmented_pressure(k.contact_pressure, status_gap(gap), chosen.r_n));
-  }
-
-  template <int dim>
-  double
-  ContactProblem<dim>::threshold_pressure(const double contact_pressure) const
-  {
-    return contact_pressure > negligible_pressure ? contact_pressure
-                                                  : contact_start.provisional_pressure;
-  }
-
   // Explicit instantiation of the members defined in this file (the class
   // itself is instantiated once, in contact_problem.cc).
 #define SL_INSTANTIATE(dim)                                                               \
@@ -293,14 +235,7 @@ namespace StabilizedLagrangian
   template void ContactProblem<dim>::update_pairings(bool);                               \
   template bool ContactProblem<dim>::update_segments();                                   \
   template std::shared_ptr<const Quadrature<dim - 1>> ContactProblem<dim>::face_segments( \
-      const FaceEvaluator &) const;                                                       \
-  template Contact::PointResponse<dim - 1> ContactProblem<dim>::point_response(           \
-      const ContactPointState<dim> &, const ContactKinematics<dim> &) const;              \
-  template void ContactProblem<dim>::evaluate_point_state(                                \
-      ContactPointState<dim> &, ContactKinematics<dim> &, const PointRefresh &) const;    \
-  template bool   ContactProblem<dim>::status(const ContactPointState<dim> &,             \
-                                            const ContactKinematics<dim> &) const;      \
-  template double ContactProblem<dim>::threshold_pressure(double) const;
+      const FaceEvaluator &) const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

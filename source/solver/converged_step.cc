@@ -51,14 +51,14 @@ namespace StabilizedLagrangian
             const Contact::PointResponse<dim - 1> *node = conditions->response_at(evaluator, q);
             // the state of the converged iterate, evaluated afresh at the point
             ContactPointState<dim> state;
-            evaluate_point_state(state, k, PointRefresh{true, true, true});
+            law.evaluate_point_state(state, k, PointRefresh{true, true, true});
             const double gap = state.pairing.gap(k.position);
             samples.push_back({face.cell,
                                face.face_no,
                                evaluator.u_values->quadrature_point(q),
                                state,
                                k,
-                               node ? *node : point_response(state, k),
+                               node ? *node : law.point_response(state, k),
                                gap,
                                Tensor<1, dim>(),
                                0.});

@@ -499,7 +499,7 @@ namespace StabilizedLagrangian
                                               contact_faces,
                                               contact_states,
                                               ghosted_solution,
-                                              static_cast<const ContactPointLaw<dim> &>(*this),
+                                              law,
                                               chosen.contact_boundaries,
                                               chosen.master_boundaries,
                                               boundary_conditions,

@@ -430,7 +430,7 @@ namespace StabilizedLagrangian
         negligible_pressure,
         loops,
         conditions,
-        *this,
+        law,
         solution,
         system_rhs,
         dirichlet_predictor,

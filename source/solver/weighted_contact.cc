@@ -174,7 +174,7 @@ namespace StabilizedLagrangian
         locally_owned,
         locally_relevant,
         mpi_communicator,
-        *this,
+        law,
         contact_zones.default_law(),
         chosen.r_n,
         chosen.r_t,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 namespace StabilizedLagrangian

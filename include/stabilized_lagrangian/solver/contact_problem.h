@@ -24,6 +24,7 @@
 
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
 #include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/stabilized_point_law.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/cumulative_slip.h>
@@ -112,7 +113,7 @@ namespace StabilizedLagrangian
    * (geometry/body_mesh.h), the friction laws of Γc and its zones are
    * Contact::FrictionZones (contact/friction_zones.h).
    */
-  template <int dim> class ContactProblem : private ContactPointLaw<dim>
+  template <int dim> class ContactProblem
   {
   public:
     /**
@@ -448,7 +449,7 @@ namespace StabilizedLagrangian
     }
     /**
      * At every locally owned contact point, evaluate what @p what names
-     * (evaluate_point_state()) and call f(before, state, kinematics) with the
+     * (StabilizedPointLaw::evaluate_point_state()) and call f(before, state, kinematics) with the
      * state before and after.
      */
     template <typename Function>
@@ -457,7 +458,7 @@ namespace StabilizedLagrangian
     {
       visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
         const ContactPointState<dim> before = state;
-        evaluate_point_state(state, k, what);
+        law.evaluate_point_state(state, k, what);
         f(before, state, k);
       });
     }
@@ -467,44 +468,10 @@ namespace StabilizedLagrangian
     for_each_contact_point(const Function &f)
     {
       visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
-        evaluate_point_state(state, k, PointRefresh());
+        law.evaluate_point_state(state, k, PointRefresh());
         f(state, k);
       });
     }
-    /**
-     * The point-wise stabilized Lagrangian with the status and threshold of
-     * @p state (with the threshold's slope when it is linearised).
-     */
-    Contact::PointResponse<dim - 1>
-    point_response(const ContactPointState<dim> &state,
-                   const ContactKinematics<dim> &k) const override;
-    /**
-     * The one evaluation of a contact point's state at the iterate, which the
-     * loops, the folded refresh in the assembly and the output share: pair the
-     * point anew (with @p what.pairing), let the pairing follow the partner's
-     * displacement (the slip increment becomes relative, Δu¹ − Δu²(ξ)), then
-     * evaluate the friction threshold and the status as @p what names.
-     */
-    void
-    evaluate_point_state(ContactPointState<dim> &state,
-                         ContactKinematics<dim> &k,
-                         const PointRefresh     &what) const override;
-    /**
-     * The gap the status test sees: @p gap, or 0 within touching_gap (or
-     * approach_gap) of zero.
-     */
-    double
-    status_gap(const double gap) const override
-    {
-      return std::abs(gap) <= std::max(touching_gap, contact_start.approach_gap) ? 0. : gap;
-    }
-    /** The contact status χ of seed eq. (5) at a point, with status_gap(). */
-    bool
-    status(const ContactPointState<dim> &state, const ContactKinematics<dim> &k) const;
-    /** The pressure the friction threshold sees: λ_n, or 0 below negligible_pressure. */
-    double
-    threshold_pressure(double contact_pressure) const override;
-
     // --- assembly.cc: the Newton system (SystemAssembler, solver/system_assembler.h) ---
     /** What the assembly of the Newton system reads and writes of this problem, now. */
     typename SystemAssembler<dim>::View
@@ -608,13 +575,7 @@ namespace StabilizedLagrangian
     /** how often the ghosts grew by the partner's DoFs on this mesh (follow_partner_dofs()) */
     unsigned int partner_dof_growths = 0;
     /** `Contact/Friction law` and the contact zones (`Contact/Zone <name>`), each with its law */
-    Contact::FrictionZones contact_zones;
-    /** The friction law at a contact point: its zone's, or Contact/Friction law. */
-    const FrictionLaws::Interface &
-    friction_law_of(const ContactPointState<dim> &state) const override
-    {
-      return contact_zones.law_of(state.zone);
-    }
+    Contact::FrictionZones                       contact_zones;
     std::unique_ptr<Discretization::FEPair<dim>> fe_pair;
     Materials::QuadratureHistory                 material_history;
     /** Set by an assembly that met a material state outside its admissible range. */
@@ -681,7 +642,7 @@ namespace StabilizedLagrangian
     double nodal_stiffness = 0.;
     /**
      * 1e-12 E_max (MPa): a contact pressure below it is round-off, and the
-     * friction threshold sees zero there (threshold_pressure())
+     * friction threshold sees zero there (StabilizedPointLaw::threshold_pressure())
      */
     double negligible_pressure = 0.;
     /** the bodies' size and the prescribed displacements: what an iterate may not exceed */
@@ -711,6 +672,18 @@ namespace StabilizedLagrangian
     bool                    verbose;
     /** The spaces FaceEvaluator reads, views of this problem's members. */
     const ContactSpaces<dim> spaces;
+    /** The law at a contact point (pairing, threshold, status, seed eqs. (5)–(8)). */
+    const StabilizedPointLaw<dim> law{{partner,
+                                       ghosted_solution,
+                                       step_start,
+                                       contact_zones,
+                                       chosen.r_n,
+                                       chosen.r_t,
+                                       loops,
+                                       touching_gap,
+                                       contact_start.approach_gap,
+                                       negligible_pressure,
+                                       contact_start.provisional_pressure}};
     /** which loops iterate, which are folded into Newton (LoopPolicy) */
     LoopPolicy  loops;
     std::string parameters_used;
