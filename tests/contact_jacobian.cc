@@ -291,17 +291,17 @@ end
     direction.compress(VectorOperation::insert);
     problem.update_ghosts();
     if (!generalized)
-      for (auto &point : problem.contact_points())
+      for (auto &point : problem.contact_boundary().points())
         {
           point.in_contact         = (state != State::open);
           point.friction_threshold = 5.;
         }
     if (state == State::mixed && !generalized)
-      for (unsigned int p = 0; p < problem.contact_points().size(); p += 3)
-        problem.contact_points()[p].in_contact = false;
+      for (unsigned int p = 0; p < problem.contact_boundary().points().size(); p += 3)
+        problem.contact_boundary().points()[p].in_contact = false;
     // (weighted: the statuses and thresholds of the nodes, the same pattern)
     if (!generalized)
-      problem.freeze_nodal_conditions(
+      problem.contact_boundary().freeze_nodal_conditions(
           [state](const unsigned int k) {
             return state != State::open && !(state == State::mixed && k % 3 == 0);
           },
@@ -309,7 +309,7 @@ end
 
     problem.assemble_newton_system(true);
     unsigned int in_contact = 0;
-    for (const auto &point : problem.contact_points())
+    for (const auto &point : problem.contact_boundary().points())
       in_contact += point.in_contact;
     // with a curved obstacle the gap |x − c| − R loses digits to cancellation
     // (round-off about r_n R 1e-16 / eps), hence a larger step there
@@ -377,7 +377,7 @@ end
       {
         // the statuses must really be mixed for the test to mean something
         const unsigned int total = Utilities::MPI::sum(
-            static_cast<unsigned int>(problem.contact_points().size()), MPI_COMM_WORLD);
+            static_cast<unsigned int>(problem.contact_boundary().points().size()), MPI_COMM_WORLD);
         const unsigned int active = Utilities::MPI::sum(in_contact, MPI_COMM_WORLD);
         const bool         ok     = active > 0 && active < total;
         failures += !ok;

@@ -92,7 +92,7 @@ end
     const auto          sections = Parameters::parse<dim>(prm, scene<dim>(pair), false);
     ContactProblem<dim> problem(prm, sections, false);
     problem.setup();
-    const auto                                mass = problem.multiplier_mass();
+    const auto                                mass = problem.contact_boundary().multiplier_mass();
     std::map<types::global_dof_index, double> diagonal, sums;
     for (const auto &[jk, value] : mass)
       {

@@ -77,7 +77,7 @@ namespace StabilizedLagrangian
       /** as given; pointwise with `automatic` (ChosenParameters::complementarity) */
       Complementarity complementarity = Complementarity::pointwise;
       /** `Complementarity = automatic`: weighted for two bodies
-       * (ContactProblem::choose_complementarity) */
+       * (ContactBoundary::choose_complementarity) */
       bool complementarity_automatic = false;
 
       static void

@@ -203,7 +203,7 @@ namespace StabilizedLagrangian
       quadrature    = prm.get("Contact quadrature") == "Gauss" ? ContactQuadrature::gauss
                                                                : ContactQuadrature::gauss_lobatto;
       complementarity_automatic = prm.get("Complementarity") == "automatic";
-      // with `automatic`, pointwise until the run chooses (ContactProblem::choose_complementarity)
+      // with `automatic`, pointwise until the run chooses (ContactBoundary::choose_complementarity)
       complementarity = prm.get("Complementarity") == "weighted" ? Complementarity::weighted
                                                                  : Complementarity::pointwise;
       prm.leave_subsection();

@@ -363,7 +363,7 @@ namespace StabilizedLagrangian
     FaceEvaluator<dim>               evaluator(view.spaces, view.contact_quadrature);
     internal::ContactFaceSystem<dim> local(view.fe_u, view.fe_m);
     const Contact::Partner<dim>     &partner    = *view.partner;
-    ContactConditions<dim>          &conditions = *view.conditions;
+    ContactConditions<dim>          &conditions = view.contact.conditions();
     // the generalized Newton's linearised pairing: a curved obstacle's, and a
     // deformable master's (paired anew before the assembly, linearised in it)
     const bool linearise_geometry =
@@ -371,17 +371,17 @@ namespace StabilizedLagrangian
     PointRefresh refresh = view.loops.at_iterate();
     // what the conditions do not refresh themselves, each point refreshes
     refresh = conditions.prepare_assembly(refresh);
-    for (const auto &face : view.contact_faces)
+    for (const auto &face : view.contact.faces())
       {
         evaluator.reinit(face, view.ghosted_solution);
         local.reinit(evaluator.u_dofs, evaluator.m_dofs, evaluator.m_local);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-          local.add_partner_dofs(partner, view.contact_states[face.first_point + q].pairing);
+          local.add_partner_dofs(partner, view.contact.point(face, q).pairing);
         local.finish_dofs();
         conditions.reinit_face(evaluator);
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
-            ContactPointState<dim> &state = view.contact_states[face.first_point + q];
+            ContactPointState<dim> &state = view.contact.point(face, q);
             ContactKinematics<dim>  k     = evaluator.kinematics(q);
             view.law.evaluate_point_state(state, k, refresh);
             local.set_shapes(*evaluator.u_values,
@@ -516,9 +516,7 @@ namespace StabilizedLagrangian
                                                body_response,
                                                ghosted_solution,
                                                spaces,
-                                               contact_faces,
                                                partner,
-                                               conditions,
                                                law,
                                                newton_constraints,
                                                hanging_constraints,
@@ -538,7 +536,7 @@ namespace StabilizedLagrangian
                                                multiplier_length_weights,
                                                inadmissible_state,
                                                material_history,
-                                               contact_states,
+                                               contact,
                                                work,
                                                [this]() { update_pairings(false); }};
   }

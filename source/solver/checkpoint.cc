@@ -513,73 +513,13 @@ namespace StabilizedLagrangian
     return 0;
   }
 
-  template <int dim>
-  std::vector<double>
-  Checkpoint<dim>::face_segments_list() const
-  {
-    // per face: the number of points, their coordinates, their weights
-    std::vector<double> segments;
-    for (const auto &face : view.contact_faces)
-      {
-        const unsigned int n = face.segments ? face.segments->size() : 0;
-        segments.push_back(n);
-        for (unsigned int q = 0; q < n; ++q)
-          for (unsigned int d = 0; d < dim - 1; ++d)
-            segments.push_back(face.segments->point(q)[d]);
-        for (unsigned int q = 0; q < n; ++q)
-          segments.push_back(face.segments->weight(q));
-      }
-    return segments;
-  }
-
-  template <int dim>
-  void
-  Checkpoint<dim>::restore_segments(const std::vector<double> &segments)
-  {
-    // the faces of the checkpoint's mesh, in the same order: each one's rule,
-    // a whole number of points whose coordinates and weights the list holds
-    std::size_t  k     = 0;
-    unsigned int first = 0;
-    for (unsigned int f = 0; f < view.contact_faces.size(); ++f)
-      {
-        auto        &face     = view.contact_faces[f];
-        const double n_points = k < segments.size() ? segments[k++] : -1.;
-        if (!(n_points >= 0. && n_points == std::floor(n_points) &&
-              n_points <= static_cast<double>((segments.size() - k) / dim)))
-          throw InputError("the segments of contact face " + std::to_string(f) +
-                           " do not fit the rebuilt mesh");
-        const auto n = static_cast<unsigned int>(n_points);
-        if (n > 0)
-          {
-            std::vector<Point<dim - 1>> points(n);
-            std::vector<double>         weights(n);
-            for (unsigned int q = 0; q < n; ++q)
-              for (unsigned int d = 0; d < dim - 1; ++d)
-                points[q][d] = segments[k++];
-            for (unsigned int q = 0; q < n; ++q)
-              weights[q] = segments[k++];
-            face.segments      = std::make_shared<const Quadrature<dim - 1>>(points, weights);
-            face.nodal_weights = nullptr;
-          }
-        else
-          face.segments = nullptr;
-        face.first_point = first;
-        first += (face.segments ? *face.segments : view.contact_quadrature).size();
-      }
-    if (k != segments.size())
-      throw InputError("it holds segments for more contact faces than the rebuilt mesh has");
-    view.contact_states.resize(first);
-  }
-
   // Explicit instantiation of the members defined in this file.
 #define SL_INSTANTIATE(dim)                                                                        \
   template void         Checkpoint<dim>::write() const;                                            \
   template unsigned int Checkpoint<dim>::restore();                                                \
-  template void         Checkpoint<dim>::restore_segments(const std::vector<double> &);            \
   template void         Checkpoint<dim>::replay_refinements();                                     \
   template void Checkpoint<dim>::continue_outputs(unsigned long, const StatisticsWriter::State &); \
-  template unsigned long       Checkpoint<dim>::cycles_log_bytes() const;                          \
-  template std::vector<double> Checkpoint<dim>::face_segments_list() const;
+  template unsigned long Checkpoint<dim>::cycles_log_bytes() const;
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

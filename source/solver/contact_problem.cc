@@ -148,11 +148,7 @@ namespace StabilizedLagrangian
     fe_u                    = fe_pair->displacement_element();
     fe_m                    = fe_pair->multiplier_element(contact_zones.any_friction() ? dim : 1);
     multiplier_dofs_on_face = dofs_on_each_face(*fe_m);
-    choose_complementarity();
-    if (!contact_zones.empty() && chosen.weighted_complementarity())
-      throw InputError("Contact/Zone " + contact_zones.begin()->name +
-                       ": contact zones with their own friction law are built for the "
-                       "pointwise conditions only; use Contact/Complementarity = pointwise.");
+    contact.choose_complementarity();
     pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
 
     std::ostringstream used;

@@ -281,19 +281,19 @@ namespace StabilizedLagrangian
           cell->get_dof_indices(u_dofs);
           newton_constraints.add_entries_local_to_global(u_dofs, dsp, false);
         }
-    FaceEvaluator evaluator(spaces, contact_quadrature);
-    sparsity_master_faces.assign(contact_faces.size(), {});
-    for (unsigned int c = 0; c < contact_faces.size(); ++c)
+    FaceEvaluator<dim>                   evaluator(spaces, contact_quadrature);
+    const std::vector<ContactFace<dim>> &faces = contact.faces();
+    sparsity_master_faces.assign(faces.size(), {});
+    for (unsigned int c = 0; c < faces.size(); ++c)
       {
-        const ContactFace &face = contact_faces[c];
+        const ContactFace<dim> &face = faces[c];
         evaluator.reinit(face, ghosted_solution);
         std::vector<types::global_dof_index> local_dofs = evaluator.u_dofs;
         local_dofs.insert(local_dofs.end(), evaluator.m_dofs.begin(), evaluator.m_dofs.end());
         // the partner's faces near the pairings (none for a rigid obstacle)
         std::set<unsigned int> near;
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-          for (const unsigned int m :
-               partner->faces_near(contact_states[face.first_point + q].pairing))
+          for (const unsigned int m : partner->faces_near(contact.point(face, q).pairing))
             near.insert(m);
         sparsity_master_faces[c].assign(near.begin(), near.end());
         for (const unsigned int m : near)
@@ -381,14 +381,15 @@ namespace StabilizedLagrangian
   {
     // a pairing left them when its partner's face is not among those coupled
     // (a rigid obstacle's pairings have no face)
-    int left = sparsity_master_faces.size() != contact_faces.size();
-    for (unsigned int c = 0; c < contact_faces.size() && left == 0; ++c)
-      for (unsigned int q = 0; q < contact_faces[c].points(contact_quadrature).size(); ++q)
+    const std::vector<ContactFace<dim>> &faces = contact.faces();
+    int                                  left  = sparsity_master_faces.size() != faces.size();
+    for (unsigned int c = 0; c < faces.size() && left == 0; ++c)
+      for (unsigned int q = 0; q < faces[c].points(contact_quadrature).size(); ++q)
         {
-          const auto &faces = sparsity_master_faces[c];
-          const int   m     = contact_states[contact_faces[c].first_point + q].pairing.master_face;
+          const auto &coupled = sparsity_master_faces[c];
+          const int   m       = contact.point(faces[c], q).pairing.master_face;
           if (m >= 0 &&
-              !std::binary_search(faces.begin(), faces.end(), static_cast<unsigned int>(m)))
+              !std::binary_search(coupled.begin(), coupled.end(), static_cast<unsigned int>(m)))
             left = 1;
         }
     return Utilities::MPI::max(left, mpi_communicator) == 1;

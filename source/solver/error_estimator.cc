@@ -423,7 +423,7 @@ namespace StabilizedLagrangian
     std::vector<Tensor<2, dim>>                  gradients;
     std::vector<std::pair<unsigned int, double>> face_complementarity;
     const ContactPointLaw<dim>                  &law = view.law;
-    for (const auto &face : view.contact_faces)
+    for (const auto &face : view.contact.faces())
       {
         if (!face_values || &face.points(view.contact_quadrature) != rule)
           {
@@ -442,7 +442,7 @@ namespace StabilizedLagrangian
         double       residual = 0., gap_terms = 0., complementarity = 0., dissipation = 0.;
         for (unsigned int q = 0; q < evaluator.n_points(); ++q)
           {
-            ContactPointState<dim> state = view.contact_states[face.first_point + q];
+            ContactPointState<dim> state = view.contact.point(face, q);
             ContactKinematics<dim> k     = evaluator.kinematics(q);
             law.evaluate_point_state(state, k, PointRefresh());
             const auto           point      = law.point_response(state, k);
@@ -496,8 +496,7 @@ namespace StabilizedLagrangian
                                               cell_quadrature,
                                               contact_quadrature,
                                               spaces,
-                                              contact_faces,
-                                              contact_states,
+                                              contact,
                                               ghosted_solution,
                                               law,
                                               chosen.contact_boundaries,

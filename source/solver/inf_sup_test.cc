@@ -170,7 +170,7 @@ namespace StabilizedLagrangian
     FaceEvaluator  evaluator(view.spaces, quadrature, false);
     Vector<double> cell_row(n_dofs);
     double         contact_mesh_size = 0.;
-    for (const auto &face : view.contact_faces)
+    for (const auto &face : view.contact.faces())
       {
         evaluator.reinit(face, view.ghosted_solution);
         const double h    = face.cell->face(face.face_no)->diameter();

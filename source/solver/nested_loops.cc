@@ -196,7 +196,7 @@ namespace StabilizedLagrangian
     // the statuses each iteration started from: with s and the pairing
     // frozen, statuses seen before lead to the same Newton solution, so a
     // repeat is a cycle that never ends
-    std::vector<std::vector<unsigned char>> seen{problem.conditions->contact_statuses()};
+    std::vector<std::vector<unsigned char>> seen{problem.contact.conditions().contact_statuses()};
     std::string                             reason;
     for (unsigned int i = 1; i <= problem.parameters.status_max_iterations; ++i)
       {
@@ -209,7 +209,7 @@ namespace StabilizedLagrangian
         // the statuses have no relative measure: the energy of the change alone
         if (changes == 0 || (i > 1 && loop_stops_adaptively(previous, 0., "status", stats)))
           return true;
-        seen.push_back(problem.conditions->contact_statuses());
+        seen.push_back(problem.contact.conditions().contact_statuses());
         const unsigned int repeated =
             first_equal(seen, seen.back(), seen.size() - 1, problem.communicator);
         if (repeated < seen.size() - 1)
@@ -255,7 +255,7 @@ namespace StabilizedLagrangian
   NestedLoops<dim>::update_statuses()
   {
     TimerOutput::Scope scope(problem.timer, "contact search");
-    return problem.conditions->update_statuses();
+    return problem.contact.conditions().update_statuses();
   }
 
   template <int dim>
@@ -263,7 +263,7 @@ namespace StabilizedLagrangian
   NestedLoops<dim>::update_friction_thresholds()
   {
     TimerOutput::Scope scope(problem.timer, "contact search");
-    return problem.conditions->update_thresholds();
+    return problem.contact.conditions().update_thresholds();
   }
 
   template <int dim>
@@ -279,7 +279,7 @@ namespace StabilizedLagrangian
         locally_owned_u,
         solution,
         bounds,
-        conditions,
+        contact,
         loops,
         contact_start,
         newton,

@@ -240,7 +240,7 @@ namespace StabilizedLagrangian
   NewtonSolver<dim>::solve_for_update(Progress &progress, TrilinosWrappers::MPI::Vector &update)
   {
     if (progress.newton_decides_statuses)
-      progress.watch.seen.push_back(problem.conditions->statuses());
+      progress.watch.seen.push_back(problem.contact.conditions().statuses());
     if (!progress.jacobian_current)
       problem.assemble(true);
     update.reinit(problem.locally_owned, problem.communicator);
@@ -429,7 +429,7 @@ namespace StabilizedLagrangian
         free_rigid_motions,
         negligible_pressure,
         loops,
-        conditions,
+        contact,
         law,
         solution,
         system_rhs,
@@ -442,11 +442,11 @@ namespace StabilizedLagrangian
         [this]() { return SystemAssembler<dim>(assembly_view()).scaled_residual(); },
         [this]() { update_ghosts(); },
         [this]() { return estimated_energy_error(); },
-        [this]() { return points_in_contact(); },
+        [this]() { return contact.points_in_contact(); },
         [this]() { close_nearest_points(); },
         [this]() { return contact_zones.any_friction(); },
         [this]() { return contact_zones.any_pressure_dependent_threshold(); },
-        [this](const typename NewtonSolver<dim>::PointVisitor &f) { for_each_contact_point(f); },
+        [this](const typename NewtonSolver<dim>::PointVisitor &f) { contact.for_each_point(f); },
         [this](const std::vector<std::vector<unsigned char>> &seen,
                const std::vector<unsigned char>              &statuses,
                const unsigned int                             end) {

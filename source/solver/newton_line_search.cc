@@ -25,7 +25,7 @@ namespace StabilizedLagrangian
     // backtracking.
     const auto                        stick    = static_cast<unsigned char>(Contact::Status::stick);
     const auto                        open     = static_cast<unsigned char>(Contact::Status::open);
-    const std::vector<unsigned char>  statuses = problem.conditions->statuses();
+    const std::vector<unsigned char>  statuses = problem.contact.conditions().statuses();
     const std::vector<unsigned char> &current  = watch.seen.back();
     unsigned int                      changes = 0, sticking = 0;
     for (unsigned int p = 0; p < statuses.size(); ++p)
@@ -107,7 +107,7 @@ namespace StabilizedLagrangian
   NewtonSolver<dim>::log_trial(const double step) const
   {
     unsigned int counts[3] = {0, 0, 0}; // open, stick, slip
-    for (const unsigned char status : problem.conditions->statuses())
+    for (const unsigned char status : problem.contact.conditions().statuses())
       ++counts[status];
     std::ostringstream line;
     line << std::setprecision(6) << "      step length " << step << ": residual "

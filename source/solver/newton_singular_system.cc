@@ -32,7 +32,8 @@ namespace StabilizedLagrangian
     // prescribed displacements), so that they stick; the loops then take s
     // from λ_n. (Conditions that keep their own thresholds, the weighted
     // nodes' s_j, would not see those set at the points.)
-    if (problem.contact_start.provisional_used || problem.conditions->keeps_own_thresholds() ||
+    if (problem.contact_start.provisional_used ||
+        problem.contact.conditions().keeps_own_thresholds() ||
         !problem.any_pressure_dependent_threshold())
       return false;
     const ContactCensus census = contact_census();

@@ -78,7 +78,7 @@ namespace StabilizedLagrangian
           area += k.JxW;
         }
     };
-    for (const auto &face : view.contact_faces)
+    for (const auto &face : view.contact.faces())
       {
         face_values.reinit(face.cell, face.face_no);
         Tensor<1, dim> normal;
@@ -124,9 +124,9 @@ namespace StabilizedLagrangian
                                          const double            master_compliance) const
   {
     const unsigned int n_points     = face.points(view.contact_quadrature).size();
-    const auto         state        = view.contact_states.begin() + face.first_point;
-    const auto         n_in_contact = static_cast<unsigned int>(
-        std::count_if(state, state + n_points, [](const auto &s) { return s.in_contact; }));
+    unsigned int       n_in_contact = 0;
+    for (unsigned int q = 0; q < n_points; ++q)
+      n_in_contact += view.contact.point(face, q).in_contact;
     // a face all in contact or all open holds no end of the contact zone
     if (n_in_contact == 0 || n_in_contact == n_points)
       return Contact::SquareRootOnset<dim>();
@@ -137,7 +137,7 @@ namespace StabilizedLagrangian
     nodes.reinit(face, view.ghosted_solution);
     for (unsigned int q = 0; q < n_points; ++q)
       {
-        const ContactPointState<dim> &state = view.contact_states[face.first_point + q];
+        const ContactPointState<dim> &state = view.contact.point(face, q);
         const ContactKinematics<dim>  k     = nodes.kinematics(q);
         points[q]                           = k.position - k.displacement;
         in_contact[q]                       = state.in_contact;

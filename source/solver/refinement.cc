@@ -27,7 +27,7 @@ namespace StabilizedLagrangian
         locally_owned_u,
         owned_multiplier_components,
         multiplier_length_weights,
-        *conditions,
+        contact.conditions(),
         solver_parameters.friction_tolerance,
         internal_force,
         external_force,

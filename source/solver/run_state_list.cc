@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace StabilizedLagrangian
@@ -42,22 +41,6 @@ namespace StabilizedLagrangian
                            w.schur_solve_seconds);
     }
 
-    /** The flags, indices and geometry of the contact points' states. */
-    template <int dim>
-    bool
-    valid_states(const std::vector<ContactPointState<dim>> &states)
-    {
-      return std::all_of(states.begin(), states.end(), [](const ContactPointState<dim> &state) {
-        // (a bool is one byte, 0 or 1; any other is undefined behaviour once read as bool)
-        unsigned char in_contact = 0;
-        std::memcpy(&in_contact, &state.in_contact, 1);
-        const auto &pairing = state.pairing;
-        return in_contact <= 1 && pairing.master_face >= -1 &&
-               std::isfinite(state.friction_threshold) && finite_tensor(pairing.master_point) &&
-               finite_tensor(pairing.normal) && finite_tensor(pairing.master_reference_point);
-      });
-    }
-
     /** The accumulated slip: whole entries, keys and steps in their integer ranges. */
     template <int dim>
     bool
@@ -86,23 +69,6 @@ namespace StabilizedLagrangian
              name.compare(name.size() - extension.size(), extension.size(), extension) == 0 &&
              is_decimal_number(
                  name.substr(stem.size(), name.size() - stem.size() - extension.size()), 9);
-    }
-
-    /**
-     * A list of @p expected values (the owned entries of a distributed vector,
-     * the owned nodes', the quadrature points'), all finite.
-     */
-    std::vector<double>
-    read_values(StateReader &in, const std::size_t expected, const std::string &what)
-    {
-      std::vector<double> values;
-      in.get(values, what);
-      if (values.size() != expected)
-        in.damaged("it has " + std::to_string(values.size()) + " " + what + ", the rebuilt mesh " +
-                   std::to_string(expected));
-      if (!all_finite(values))
-        in.damaged("its " + what + " are not all finite");
-      return values;
     }
 
     /** The entries @p owned of @p vector, in the order of the index set. */
@@ -160,9 +126,7 @@ namespace StabilizedLagrangian
         step_start,
         last_increment,
         material_history,
-        contact_faces,
-        contact_states,
-        conditions,
+        contact,
         active_set,
         cumulative_slip,
         solution_output,
@@ -221,7 +185,7 @@ namespace StabilizedLagrangian
         Scope::step_cut_and_checkpoint,
         [this](StateWriter &out) { out.put(owned_values(view.solution, view.locally_owned)); },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, view.locally_owned.n_elements(), "solution values");
+          auto values = in.get_finite("solution values", view.locally_owned.n_elements());
           return [this, values]() {
             set_owned_values(view.solution, view.locally_owned, values);
             view.update_ghosts();
@@ -237,7 +201,7 @@ namespace StabilizedLagrangian
           out.put(owned_values(view.last_increment, view.locally_owned));
         },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, view.locally_owned.n_elements(), "increment values");
+          auto values = in.get_finite("increment values", view.locally_owned.n_elements());
           return [this, values]() {
             set_owned_values(view.last_increment, view.locally_owned, values);
           };
@@ -249,8 +213,8 @@ namespace StabilizedLagrangian
         Scope::checkpoint_only,
         [this](StateWriter &out) { out.put(view.material_history.committed_data()); },
         [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(
-              in, view.material_history.committed_data().size(), "material history values");
+          auto values = in.get_finite("material history values",
+                                      view.material_history.committed_data().size());
           return [this, values]() { view.material_history.restore(values); };
         });
   }
@@ -260,50 +224,8 @@ namespace StabilizedLagrangian
   Checkpoint<dim>::register_contact_state()
   {
     RunState &state_list = view.state_list;
-    // the segments set the contact points' layout: read before the points
-    state_list.add(
-        "contact faces",
-        Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(face_segments_list()); },
-        [this](StateReader &in) -> std::function<void()> {
-          std::vector<double> segments;
-          in.get(segments, "segment values");
-          if (!all_finite(segments))
-            in.damaged("its segments are not all finite");
-          try
-            {
-              restore_segments(segments);
-            }
-          catch (const InputError &e)
-            {
-              in.damaged(e.what());
-            }
-          return {};
-        },
-        RunState::copy_of(view.contact_faces));
-    state_list.add(
-        "contact points",
-        Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(view.contact_states); },
-        [this](StateReader &in) -> std::function<void()> {
-          std::vector<ContactPointState<dim>> states;
-          in.get(states, "contact points");
-          check_contact_states(in, states);
-          return [this, states]() { view.contact_states = states; };
-        },
-        RunState::copy_of(view.contact_states));
-    state_list.add(
-        "contact conditions",
-        Scope::step_cut_and_checkpoint,
-        [this](StateWriter &out) { out.put(view.conditions->owned_states()); },
-        [this](StateReader &in) -> std::function<void()> {
-          auto values = read_values(in, view.conditions->n_state_values(), "nodal state values");
-          return [this, values]() { view.conditions->restore_states(values); };
-        },
-        [this]() -> std::function<void()> {
-          std::shared_ptr<const ContactConditions<dim>> copy = view.conditions->copy();
-          return [this, copy]() { view.conditions->restore(*copy); };
-        });
+    // the faces' segments, the points' and the conditions' states
+    view.contact.register_state(state_list);
     state_list.add(
         "active set",
         Scope::checkpoint_only,
@@ -327,23 +249,6 @@ namespace StabilizedLagrangian
             in.damaged("its accumulated slip is not a list of whole, finite entries");
           return [this, slips]() { view.cumulative_slip.restore(slips); };
         });
-  }
-
-  template <int dim>
-  void
-  Checkpoint<dim>::check_contact_states(StateReader                               &in,
-                                        const std::vector<ContactPointState<dim>> &states) const
-  {
-    if (states.size() != view.contact_states.size())
-      in.damaged("it has " + std::to_string(states.size()) + " contact points, the rebuilt mesh " +
-                 std::to_string(view.contact_states.size()));
-    if (!valid_states(states))
-      in.damaged("its contact points' states hold invalid values");
-    const bool rigid_partner = view.chosen.master_boundaries.empty();
-    for (const auto &point : states)
-      if (point.zone > view.contact_zones.size() ||
-          (rigid_partner && point.pairing.master_face >= 0))
-        in.damaged("a contact point names a contact zone or master face the scene does not have");
   }
 
   template <int dim>
@@ -401,9 +306,7 @@ namespace StabilizedLagrangian
   template void                           Checkpoint<dim>::register_load_stepping_state(); \
   template void                           Checkpoint<dim>::register_field_state();         \
   template void                           Checkpoint<dim>::register_contact_state();       \
-  template void                           Checkpoint<dim>::register_output_state();        \
-  template void                           Checkpoint<dim>::check_contact_states(           \
-      StateReader &, const std::vector<ContactPointState<dim>> &) const;
+  template void                           Checkpoint<dim>::register_output_state();
 
   SL_INSTANTIATE(2)
   SL_INSTANTIATE(3)

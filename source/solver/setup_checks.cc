@@ -50,7 +50,7 @@ namespace StabilizedLagrangian
             },
             owned_multiplier_components,
             hanging_constraints,
-            contact_faces,
+            contact,
             spaces,
             ghosted_solution,
             *partner,
@@ -74,16 +74,6 @@ namespace StabilizedLagrangian
   }
 
   template <int dim>
-  unsigned int
-  ContactProblem<dim>::points_in_contact() const
-  {
-    unsigned int count = 0;
-    for (const auto &state : contact_states)
-      count += state.in_contact;
-    return Utilities::MPI::sum(count, mpi_communicator);
-  }
-
-  template <int dim>
   void
   ContactProblem<dim>::close_nearest_points()
   {
@@ -94,22 +84,23 @@ namespace StabilizedLagrangian
     // nearest to it, as a body lowered until it touches; those points count
     // as touching (approach_gap) until the step converges.
     double nearest = std::numeric_limits<double>::max();
-    for_each_contact_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
+    contact.for_each_point([&](ContactPointState<dim> &state, const ContactKinematics<dim> &k) {
       nearest = std::min(nearest, state.pairing.gap(k.position));
     });
     nearest                     = Utilities::MPI::min(nearest, mpi_communicator);
     contact_start.approach_gap  = std::max(nearest, 0.) + touching_gap;
     contact_start.approach_used = true;
     // the conditions' own gaps (the nodes' weighted gaps): the nearest closes
-    contact_start.approach_gap = std::max(
-        contact_start.approach_gap, std::max(conditions->least_gap(nearest), 0.) + touching_gap);
-    conditions->close_nearest(nearest, touching_gap);
+    contact_start.approach_gap =
+        std::max(contact_start.approach_gap,
+                 std::max(contact.conditions().least_gap(nearest), 0.) + touching_gap);
+    contact.conditions().close_nearest(nearest, touching_gap);
     pcout << "  nothing touches the "
           << (free_rigid_motions.empty()
                   ? std::string("partner and the Newton system is singular")
                   : "obstacle and the Dirichlet conditions leave " + free_rigid_motions + " free")
-          << ": the " << points_in_contact() << " contact point(s) nearest to it (gap " << nearest
-          << " mm) start in contact\n";
+          << ": the " << contact.points_in_contact() << " contact point(s) nearest to it (gap "
+          << nearest << " mm) start in contact\n";
   }
 
   // Explicit instantiation of the members defined in this file (the class
@@ -118,7 +109,6 @@ namespace StabilizedLagrangian
   template typename SceneChecks<dim>::View ContactProblem<dim>::scene_view() const;             \
   template typename InfSupTest<dim>::View  ContactProblem<dim>::inf_sup_view();                 \
   template void                            ContactProblem<dim>::run_inf_sup_test(unsigned int); \
-  template unsigned int                    ContactProblem<dim>::points_in_contact() const;      \
   template void                            ContactProblem<dim>::close_nearest_points();
 
   SL_INSTANTIATE(2)

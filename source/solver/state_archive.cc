@@ -1,6 +1,7 @@
 #include <stabilized_lagrangian/solver/state_archive.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace StabilizedLagrangian
 {
@@ -42,6 +43,19 @@ namespace StabilizedLagrangian
       , path(std::move(path))
       , end(this->data.size())
   {
+  }
+
+  std::vector<double>
+  StateReader::get_finite(const std::string &what, const std::size_t expected)
+  {
+    std::vector<double> values;
+    get(values, what);
+    if (expected != std::string::npos && values.size() != expected)
+      damaged("it has " + std::to_string(values.size()) + " " + what + ", the rebuilt mesh " +
+              std::to_string(expected));
+    if (!std::all_of(values.begin(), values.end(), [](const double x) { return std::isfinite(x); }))
+      damaged("its " + what + " are not all finite");
+    return values;
   }
 
   void

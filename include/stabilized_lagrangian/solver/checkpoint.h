@@ -11,7 +11,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/cumulative_slip.h>
 #include <stabilized_lagrangian/contact/friction_zones.h>
@@ -79,24 +79,23 @@ namespace StabilizedLagrangian
       const IndexSet                   &locally_owned;
       const Quadrature<dim - 1>        &contact_quadrature;
       // written by a restore (and a step cut): the entries of the run's state
-      double                                  &time;
-      LoadStepController::State               &controller;
-      WorkCounters                            &work;
-      WorkCounters                            &path_start_work;
-      double                                  &last_normal_force;
-      double                                  &last_step_size;
-      TrilinosWrappers::MPI::Vector           &solution;
-      const TrilinosWrappers::MPI::Vector     &ghosted_solution;
-      TrilinosWrappers::MPI::Vector           &step_start;
-      TrilinosWrappers::MPI::Vector           &last_increment;
-      Materials::QuadratureHistory            &material_history;
-      std::vector<ContactFace<dim>>           &contact_faces;
-      std::vector<ContactPointState<dim>>     &contact_states;
-      std::unique_ptr<ContactConditions<dim>> &conditions;
-      std::vector<Point<dim>>                 &active_set;
-      CumulativeSlip<dim>                     &cumulative_slip;
-      SolutionOutput<dim>                     &solution_output;
-      StatisticsWriter                        &statistics;
+      double                              &time;
+      LoadStepController::State           &controller;
+      WorkCounters                        &work;
+      WorkCounters                        &path_start_work;
+      double                              &last_normal_force;
+      double                              &last_step_size;
+      TrilinosWrappers::MPI::Vector       &solution;
+      const TrilinosWrappers::MPI::Vector &ghosted_solution;
+      TrilinosWrappers::MPI::Vector       &step_start;
+      TrilinosWrappers::MPI::Vector       &last_increment;
+      Materials::QuadratureHistory        &material_history;
+      /** Γc: its faces' segments, its points' and its conditions' states */
+      ContactBoundary<dim>    &contact;
+      std::vector<Point<dim>> &active_set;
+      CumulativeSlip<dim>     &cumulative_slip;
+      SolutionOutput<dim>     &solution_output;
+      StatisticsWriter        &statistics;
       /** refresh the ghosted copy of the solution */
       std::function<void()> update_ghosts;
       /** set up the DoFs and the problem on the refined mesh */
@@ -146,25 +145,11 @@ namespace StabilizedLagrangian
     /** What the output files continue from: the .pvd records, the CSV files' sizes. */
     void
     register_output_state();
-    /** Whether contact point states read from a checkpoint fit the scene (InputError). */
-    void
-    check_contact_states(StateReader &in, const std::vector<ContactPointState<dim>> &states) const;
 
     // --- checkpoint.cc ---
-    /**
-     * The contact faces' segment rules of a checkpoint (per face: the number
-     * of points, their coordinates, their weights), and the contact points laid
-     * out for them: the segments follow the configuration of the checkpoint,
-     * not the mesh's initial one.
-     */
-    void
-    restore_segments(const std::vector<double> &segments);
     /** The size of refinement_cycles.csv (rank 0; 0 elsewhere). */
     unsigned long
     cycles_log_bytes() const;
-    /** The contact faces' segment rules, as restore_segments() reads them. */
-    std::vector<double>
-    face_segments_list() const;
     /** Refine the mesh again as refinement_history lists it, cell by cell. */
     void
     replay_refinements();

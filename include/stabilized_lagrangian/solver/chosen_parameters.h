@@ -21,7 +21,7 @@ namespace StabilizedLagrangian
     /**
      * @brief The values given in @p contact; the automatic ones are chosen
      * later (SceneChecks::choose_augmentation_parameters,
-     * ContactProblem::choose_complementarity), the named boundaries resolved
+     * ContactBoundary::choose_complementarity), the named boundaries resolved
      * once the mesh is known (ContactProblem::resolve_boundaries).
      */
     explicit ChosenParameters(const Parameters::Contact &contact)

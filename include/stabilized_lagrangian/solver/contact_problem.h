@@ -12,10 +12,8 @@
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe.h>
-#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
@@ -23,16 +21,7 @@
 #include <boost/signals2/signal.hpp>
 
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
-#include <stabilized_lagrangian/contact/contact_conditions.h>
-#include <stabilized_lagrangian/contact/stabilized_point_law.h>
-#include <stabilized_lagrangian/contact/contact_edge.h>
-#include <stabilized_lagrangian/contact/contact_surface.h>
-#include <stabilized_lagrangian/contact/cumulative_slip.h>
-#include <stabilized_lagrangian/contact/friction_law.h>
-#include <stabilized_lagrangian/contact/friction_law_check.h>
-#include <stabilized_lagrangian/contact/friction_zones.h>
-#include <stabilized_lagrangian/contact/partner.h>
-#include <stabilized_lagrangian/contact/stabilized_lagrangian.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
 #include <stabilized_lagrangian/geometry/body_mesh.h>
 #include <stabilized_lagrangian/geometry/scene.h>
@@ -44,7 +33,6 @@
 #include <stabilized_lagrangian/postprocessing/solution_output.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/checkpoint.h>
-#include <stabilized_lagrangian/solver/chosen_parameters.h>
 #include <stabilized_lagrangian/solver/error_estimator.h>
 #include <stabilized_lagrangian/solver/inf_sup_test.h>
 #include <stabilized_lagrangian/solver/iterative_solver.h>
@@ -57,7 +45,6 @@
 #include <stabilized_lagrangian/solver/newton_solver.h>
 #include <stabilized_lagrangian/solver/refinement_cycles.h>
 #include <stabilized_lagrangian/solver/run_log.h>
-#include <stabilized_lagrangian/solver/run_state.h>
 #include <stabilized_lagrangian/solver/scene_bounds.h>
 #include <stabilized_lagrangian/solver/scene_checks.h>
 #include <stabilized_lagrangian/solver/step_statistics_collector.h>
@@ -66,7 +53,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <map>
 
 namespace StabilizedLagrangian
 {
@@ -79,39 +65,15 @@ namespace StabilizedLagrangian
    *
    * Unknowns: displacement u on the bodies, contact pressure λ_n and friction
    * semi-multiplier Λ on Γc only, assembled as one monolithic system
-   * [u | λ_n, Λ] on distributed Trilinos objects. The members are defined by
-   * phase, in source/solver/ (each section of the private part names its
-   * file): contact_problem.cc run(), the mesh (built and held by BodyMesh,
-   * geometry/body_mesh.h) and the setup, setup_checks.cc what
-   * the checks of the scene and the inf-sup test read and the start of a
-   * body nothing holds, dofs.cc DoFs and sparsity, constraints.cc the constraints
-   * (SystemConstraints), contact_points.cc pairing and statuses, assembly.cc the
-   * view the assembly of the Newton system reads, load_path.cc the view the load
-   * path reads, refinement_cycles.cc the view the refinement cycles read, run_log.cc
-   * the view the log reads,
-   * nested_loops.cc the view the loops of seed §2.2 read, newton.cc the view
-   * the Newton iteration reads, converged_step.cc what an accepted step commits,
-   * refinement.cc the views of the step's statistics (StepStatisticsCollector)
-   * and of the adaptive refinement, run_state_list.cc the view the checkpoints
-   * read. The checkpoints and the problem's entries of the run's state (what a
-   * step cut restores and a checkpoint keeps) are Checkpoint's
-   * (solver/checkpoint.h: checkpoint.cc, run_state_list.cc). The load path on
-   * one mesh is LoadPath's (solver/load_path.h), the adaptive refinement cycles
-   * around it RefinementCycles' (solver/refinement_cycles.h). The loops of seed
-   * §2.2 are NestedLoops' (solver/nested_loops.h), the Newton iteration they
-   * call NewtonSolver's
-   * (solver/newton_solver.h: newton.cc, newton_singular_system.cc,
-   * newton_line_search.cc); the log of the load path and run_summary.csv are
-   * written by RunLog (solver/run_log.h), the output files are written by SolutionOutput
-   * (postprocessing/solution_output.h), the scene is checked by SceneChecks
-   * (solver/scene_checks.h), the pair by InfSupTest (solver/inf_sup_test.h),
-   * the Newton system is assembled by SystemAssembler (solver/system_assembler.h),
-   * the bodies' material response is Materials::BodyResponse's
-   * (materials/body_response.h), the residual error estimate is ErrorEstimator's
-   * (solver/error_estimator.h; error_estimator.cc builds its view) and the refinement of the mesh
-   * MeshRefinement's (solver/mesh_refinement.h); the mesh is BodyMesh's
-   * (geometry/body_mesh.h), the friction laws of Γc and its zones are
-   * Contact::FrictionZones (contact/friction_zones.h).
+   * [u | λ_n, Λ] on distributed Trilinos objects. The problem owns the mesh,
+   * the DoFs, the Newton system and the run's state, and asks one class per
+   * concept for the rest (doc/architecture.md has the map): Γc and its
+   * conditions (ContactBoundary), the law at a point (StabilizedPointLaw),
+   * the Newton iteration and the loops of seed §2.2 (NewtonSolver,
+   * NestedLoops), the load path and the refinement cycles (LoadPath,
+   * RefinementCycles), the assembly (SystemAssembler), the checkpoints
+   * (Checkpoint). Each reads the problem through a view its section of the
+   * private part builds; each section names the file that defines it.
    */
   template <int dim> class ContactProblem
   {
@@ -216,31 +178,12 @@ namespace StabilizedLagrangian
       return system_matrix;
     }
 
-    /** @brief Frozen states of the locally owned contact points; writable, for tests. */
-    std::vector<ContactPointState<dim>> &
-    contact_points()
+    /** @brief Γc: its faces, the states of their points, its conditions; writable, for tests. */
+    ContactBoundary<dim> &
+    contact_boundary()
     {
-      return contact_states;
+      return contact;
     }
-
-    /**
-     * @brief With `Complementarity = weighted`, freeze the status of the k-th
-     * owned multiplier node to @p in_contact(k) and every threshold to
-     * @p threshold; for tests. Returns the number of owned nodes.
-     */
-    unsigned int
-    freeze_nodal_conditions(const std::function<bool(unsigned int)> &in_contact,
-                            const double                             threshold);
-
-    /**
-     * @brief The multiplier mass matrix M_jk = ∫_Γc ψ_j φ_k of this rank's
-     * contact faces (weighted_contact.cc), per pair of multiplier nodes (their
-     * λ_n DoFs): ψ_j the run's multiplier basis, φ_k the standard (nodal) one.
-     * Diagonal, D_jj = ∫φ_j, with a dual pair. The entries of nodes shared
-     * with another rank are this rank's part.
-     */
-    std::map<std::pair<types::global_dof_index, types::global_dof_index>, double>
-    multiplier_mass() const;
 
     /** @brief The multiplier element component (0: λ_n, 1..: Λ) of each owned multiplier row
      * (dofs.cc). */
@@ -250,67 +193,17 @@ namespace StabilizedLagrangian
     /**
      * @brief Re-pair every contact point with the contact partner at the
      * current positions; with @p resegment,
-     * first update the segments of the contact faces (update_segments();
-     * both in contact_points.cc).
+     * first update the segments of the contact faces
+     * (ContactBoundary::update_segments(); contact_points.cc).
      */
     void
     update_pairings(const bool resegment = false);
-    /**
-     * Cut the contact faces into segments at the projections of the deformed
-     * master's vertices (2D, deformable master) and rebuild the contact points
-     * of the faces whose segments changed, with thresholds and statuses
-     * evaluated at the current iterate. Returns whether any face changed.
-     */
-    bool
-    update_segments();
-
     /** @brief Refresh the ghosted copy of the iterate after current_solution() changed
      * (assembly.cc). */
     void
     update_ghosts();
 
   private:
-    /** One face of Γc on a locally owned cell (contact_surface.h). */
-    using ContactFace = StabilizedLagrangian::ContactFace<dim>;
-
-    /** The evaluation of the fields on one contact face (contact_surface.h). */
-    using FaceEvaluator = StabilizedLagrangian::FaceEvaluator<dim>;
-
-    /**
-     * The segments of one contact face (ContactFace::segments) from its
-     * current corners (@p corners: a FaceEvaluator at the face's vertices):
-     * 2D, the cuts at the projected master vertices; 3D, the parts of the
-     * projected master faces (Contact::face_segments()); null: nothing to cut.
-     */
-    std::shared_ptr<const Quadrature<dim - 1>>
-    face_segments(const FaceEvaluator &corners) const;
-
-    // --- weighted_contact.cc: the choice of the contact conditions ---
-    /**
-     * @brief `Complementarity = automatic`: weighted for two deformable bodies
-     * and dual pairs, pointwise against a rigid obstacle and where weighted does
-     * not apply (doc/formulation.md, "Which conditions by default"), into
-     * chosen.complementarity. The constrained multiplier nodes are seen by
-     * setup_nodal_conditions().
-     */
-    void
-    choose_complementarity();
-    /** With `automatic`: the choice and its reason, logged once the mesh is known */
-    std::string complementarity_choice;
-    /** ContactFace::dual_basis of every contact face, with a dual pair. */
-    void
-    set_dual_multiplier_basis();
-    /**
-     * The contact conditions of this mesh (make_contact_conditions(), the one
-     * place that names them): refuse, or with `automatic` avoid, the weighted
-     * conditions on constrained multiplier nodes.
-     */
-    void
-    setup_contact_conditions();
-    /** What the contact conditions read and write: views of this problem's members. */
-    ContactConditionsData<dim>
-    conditions_data();
-
     // --- load_path.cc: the load path on one mesh (LoadPath); refinement_cycles.cc:
     // the adaptive refinement cycles (RefinementCycles) ---
     /** What the load path reads and writes of this problem, and what it asks of it. */
@@ -363,9 +256,6 @@ namespace StabilizedLagrangian
     /** The discretisation as InfSupTest reads it, now. */
     typename InfSupTest<dim>::View
     inf_sup_view();
-    /** Collective: the number of contact points whose status χ is contact. */
-    unsigned int
-    points_in_contact() const;
     /** Put the contact points nearest to the obstacle in contact (an unheld body's start). */
     void
     close_nearest_points();
@@ -428,50 +318,11 @@ namespace StabilizedLagrangian
     bool
     pairings_left_sparsity() const;
 
-    // --- contact_points.cc: pairing, segments, kinematics, statuses, thresholds ---
+    // --- contact_points.cc: Γc on a new mesh, its pairing (ContactBoundary) ---
+    /** Γc's points of this mesh, paired, with the statuses of the initial configuration. */
     void
     setup_contact_points();
-    /** The consistent nodal weights of the contact faces (ContactFace::nodal_weights). */
-    void
-    set_consistent_nodal_weights();
-    /** Call f(state, kinematics) at every locally owned contact point, nothing re-evaluated. */
-    template <typename Function>
-    void
-    visit_contact_points(const Function &f)
-    {
-      FaceEvaluator evaluator(spaces, contact_quadrature);
-      for (const auto &face : contact_faces)
-        {
-          evaluator.reinit(face, ghosted_solution);
-          for (unsigned int q = 0; q < evaluator.n_points(); ++q)
-            f(contact_states[face.first_point + q], evaluator.kinematics(q));
-        }
-    }
-    /**
-     * At every locally owned contact point, evaluate what @p what names
-     * (StabilizedPointLaw::evaluate_point_state()) and call f(before, state, kinematics) with the
-     * state before and after.
-     */
-    template <typename Function>
-    void
-    refresh_contact_points(const PointRefresh &what, const Function &f)
-    {
-      visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
-        const ContactPointState<dim> before = state;
-        law.evaluate_point_state(state, k, what);
-        f(before, state, k);
-      });
-    }
-    /** Call f(state, kinematics) at every locally owned contact point, its state frozen. */
-    template <typename Function>
-    void
-    for_each_contact_point(const Function &f)
-    {
-      visit_contact_points([&](ContactPointState<dim> &state, ContactKinematics<dim> k) {
-        law.evaluate_point_state(state, k, PointRefresh());
-        f(state, k);
-      });
-    }
+
     // --- assembly.cc: the Newton system (SystemAssembler, solver/system_assembler.h) ---
     /** What the assembly of the Newton system reads and writes of this problem, now. */
     typename SystemAssembler<dim>::View
@@ -515,9 +366,6 @@ namespace StabilizedLagrangian
      */
     void
     commit_converged_step(const unsigned int step, const double time);
-    /** The converged state at the nodes of Γc, evaluated afresh at the iterate. */
-    std::vector<ContactSample<dim>>
-    sample_contact_surface();
     /** the slip of Γc's nodes over the converged steps (a checkpoint keeps it) */
     CumulativeSlip<dim> cumulative_slip;
 
@@ -660,11 +508,6 @@ namespace StabilizedLagrangian
     /** set by the predictor around its assembly alone: add_to_global_system() adds K Δū */
     bool dirichlet_predictor = false;
 
-    std::vector<ContactFace>            contact_faces;
-    std::vector<ContactPointState<dim>> contact_states;
-    /** the contact conditions, pointwise or weighted (setup_contact_conditions()) */
-    std::unique_ptr<ContactConditions<dim>> conditions;
-
     double time = 0.;
     /** reference positions of the points in contact at the end of some step on this mesh */
     std::vector<Point<dim>> active_set;
@@ -685,8 +528,29 @@ namespace StabilizedLagrangian
                                        negligible_pressure,
                                        contact_start.provisional_pressure}};
     /** which loops iterate, which are folded into Newton (LoopPolicy) */
-    LoopPolicy  loops;
-    std::string parameters_used;
+    LoopPolicy loops;
+    /** Γc: its faces, the states of their contact points and the contact conditions */
+    ContactBoundary<dim> contact{{spaces,
+                                  body_mesh,
+                                  fe_pair,
+                                  dof_handler_u,
+                                  contact_quadrature,
+                                  contact_parameters,
+                                  adaptive_refinement,
+                                  contact_zones,
+                                  chosen,
+                                  law,
+                                  partner,
+                                  ghosted_solution,
+                                  locally_owned,
+                                  locally_relevant,
+                                  n_u,
+                                  hanging_constraints,
+                                  loops,
+                                  negligible_pressure,
+                                  mpi_communicator,
+                                  pcout}};
+    std::string          parameters_used;
     /** the output files of the converged steps (VTU, profiles, obstacle, .pvd records) */
     SolutionOutput<dim> solution_output;
     StatisticsWriter    statistics;

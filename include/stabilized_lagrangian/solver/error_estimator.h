@@ -15,7 +15,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
-#include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/contact/contact_edge.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/materials/body_response.h>
@@ -78,15 +78,15 @@ namespace StabilizedLagrangian
      */
     struct View
     {
-      const Triangulation<dim>                  &triangulation;
-      const DoFHandler<dim>                     &displacement_dofs;
-      const FiniteElement<dim>                  &displacement_fe;
-      const Quadrature<dim>                     &cell_quadrature;
-      const Quadrature<dim - 1>                 &contact_quadrature;
-      const ContactSpaces<dim>                  &spaces;
-      const std::vector<ContactFace<dim>>       &contact_faces;
-      const std::vector<ContactPointState<dim>> &contact_states;
-      const TrilinosWrappers::MPI::Vector       &ghosted_solution; ///< the iterate, relevant
+      const Triangulation<dim>  &triangulation;
+      const DoFHandler<dim>     &displacement_dofs;
+      const FiniteElement<dim>  &displacement_fe;
+      const Quadrature<dim>     &cell_quadrature;
+      const Quadrature<dim - 1> &contact_quadrature;
+      const ContactSpaces<dim>  &spaces;
+      /** Γc: its faces and their points' states */
+      const ContactBoundary<dim>          &contact;
+      const TrilinosWrappers::MPI::Vector &ghosted_solution; ///< the iterate, relevant
       /** the evaluation of a contact point's state and the law there */
       const ContactPointLaw<dim>                                             &law;
       const std::set<types::boundary_id>                                     &contact_boundaries;

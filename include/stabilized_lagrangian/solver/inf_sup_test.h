@@ -15,6 +15,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/parameters.h>
@@ -78,8 +79,9 @@ namespace StabilizedLagrangian
       /** the multiplier element component (0: λ_n) of each owned multiplier row */
       const std::vector<std::pair<types::global_dof_index, unsigned int>> &multiplier_components;
       /** the hanging-node (and coarser multiplier mesh) constraints */
-      const AffineConstraints<double>     &hanging_constraints;
-      const std::vector<ContactFace<dim>> &contact_faces;
+      const AffineConstraints<double> &hanging_constraints;
+      /** Γc: its faces */
+      const ContactBoundary<dim>          &contact;
       const ContactSpaces<dim>            &spaces;
       const TrilinosWrappers::MPI::Vector &ghosted_solution;
       const Contact::Partner<dim>         &partner;

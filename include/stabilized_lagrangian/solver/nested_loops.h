@@ -7,7 +7,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/loop_policy.h>
@@ -72,8 +72,9 @@ namespace StabilizedLagrangian
       /** owned: the monolithic iterate */
       const TrilinosWrappers::MPI::Vector &solution;
       /** the bodies' size: the yardstick of a loop's relative change */
-      const SceneBounds                             &bounds;
-      const std::unique_ptr<ContactConditions<dim>> &conditions;
+      const SceneBounds &bounds;
+      /** Γc: its conditions' statuses and thresholds */
+      const ContactBoundary<dim> &contact;
       // --- what the loops write
       /** a loop that cycles is folded into the generalized Newton for one step */
       LoopPolicy &loops;

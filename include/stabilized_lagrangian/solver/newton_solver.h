@@ -9,7 +9,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/postprocessing/statistics.h>
 #include <stabilized_lagrangian/solver/error_estimator.h>
@@ -161,10 +161,11 @@ namespace StabilizedLagrangian
       /** the rigid motions no Dirichlet condition holds, in words */
       const std::string &free_rigid_motions;
       /** a contact pressure below it is round-off */
-      const double                                  &negligible_pressure;
-      const LoopPolicy                              &loops;
-      const std::unique_ptr<ContactConditions<dim>> &conditions;
-      const ContactPointLaw<dim>                    &law;
+      const double     &negligible_pressure;
+      const LoopPolicy &loops;
+      /** Γc: its conditions' statuses */
+      const ContactBoundary<dim> &contact;
+      const ContactPointLaw<dim> &law;
       // --- what the iteration writes
       /** owned: the iterate, moved by the line search */
       TrilinosWrappers::MPI::Vector &solution;

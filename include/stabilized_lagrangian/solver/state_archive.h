@@ -96,6 +96,13 @@ namespace StabilizedLagrangian
       values.resize(count(what, sizeof(T)));
       take(values.data(), values.size() * sizeof(T));
     }
+    /**
+     * @brief The next list of values, all finite; with @p expected (not
+     * `std::string::npos`), exactly that many: a damaged file otherwise.
+     * @p what names the values in a message.
+     */
+    std::vector<double>
+    get_finite(const std::string &what, const std::size_t expected = std::string::npos);
     /** @brief The next string, of at most @p longest characters. */
     void
     get(std::string &text, const std::size_t longest, const std::string &what);

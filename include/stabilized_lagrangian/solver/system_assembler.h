@@ -15,7 +15,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
-#include <stabilized_lagrangian/contact/contact_conditions.h>
+#include <stabilized_lagrangian/contact/contact_boundary.h>
 #include <stabilized_lagrangian/contact/contact_surface.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
@@ -86,12 +86,10 @@ namespace StabilizedLagrangian
       const Materials::BodyResponse<dim> &body_response;
       // --- the iterate and the contact, read
       /** relevant: the iterate */
-      const TrilinosWrappers::MPI::Vector           &ghosted_solution;
-      const ContactSpaces<dim>                      &spaces;
-      const std::vector<ContactFace<dim>>           &contact_faces;
-      const std::unique_ptr<Contact::Partner<dim>>  &partner;
-      const std::unique_ptr<ContactConditions<dim>> &conditions;
-      const ContactPointLaw<dim>                    &law;
+      const TrilinosWrappers::MPI::Vector          &ghosted_solution;
+      const ContactSpaces<dim>                     &spaces;
+      const std::unique_ptr<Contact::Partner<dim>> &partner;
+      const ContactPointLaw<dim>                   &law;
       /** hanging nodes + homogeneous Dirichlet */
       const AffineConstraints<double> &newton_constraints;
       /** hanging nodes only */
@@ -128,8 +126,8 @@ namespace StabilizedLagrangian
       std::string &inadmissible_state;
       /** the trial material history of every quadrature point */
       Materials::QuadratureHistory &material_history;
-      /** the contact points' states, refreshed as the loops fold them in (LoopPolicy) */
-      std::vector<ContactPointState<dim>> &contact_states;
+      /** Γc: its points' states are refreshed as the loops fold them in (LoopPolicy) */
+      ContactBoundary<dim> &contact;
       /** the counts of assemblies and Jacobians */
       WorkCounters &work;
       // --- what only the problem can do
