@@ -21,7 +21,7 @@ thresholds) and `Predictor = extrapolation` (the last step's increment).
 
 Then a damaged checkpoint is refused with a clear message and a non-zero
 exit: a truncated rank file, a resume on another number of ranks, a changed
-parameter, and no checkpoint at all."""
+parameter, an End time before the checkpoint's time, and no checkpoint at all."""
 import os
 import random
 import shutil
@@ -233,6 +233,10 @@ if os.path.exists(checkpoint):
     with open(f"{base}/input.prm", "w") as f:
         f.write(original.replace("u0=2.5", "u0=2.0"))
     refused("a changed Boundary conditions entry", 1, "Function constants")
+    # an End time before the checkpoint's time leaves nothing to solve
+    with open(f"{base}/input.prm", "w") as f:
+        f.write(original + "\nsubsection Load stepping\n  set End time = 1e-6\nend\n")
+    refused("an End time before the checkpoint's time", 1, "Load stepping/End time = 1e-06 is before")
     with open(f"{base}/input.prm", "w") as f:
         f.write(original)
     data = open(f"{checkpoint}/rank-0.bin", "rb").read()

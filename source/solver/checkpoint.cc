@@ -464,6 +464,16 @@ namespace StabilizedLagrangian
     for (const auto &put : put_back)
       if (put)
         put();
+    // (the same time on every rank: all refuse together)
+    if (view.time > view.end_time * (1. + 1e-12))
+      {
+        std::ostringstream message;
+        message << "--resume: Load stepping/End time = " << view.end_time
+                << " is before the time of the checkpoint in " << directory << ", t = " << view.time
+                << ": nothing is left to solve. Set End time after it to continue the load path, "
+                   "or run without --resume to start again.";
+        throw InputError(message.str());
+      }
     view.pcout << "Resuming from " << directory << ": step " << view.controller.step
                << ", t = " << view.time
                << (view.adaptive_refinement.cycles > 0

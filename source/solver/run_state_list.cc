@@ -104,6 +104,7 @@ namespace StabilizedLagrangian
         state_list,
         parameters_used,
         adaptive_refinement,
+        load_stepping.end_time,
         chosen,
         contact_zones,
         run_directory,

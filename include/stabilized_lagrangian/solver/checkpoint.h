@@ -62,8 +62,10 @@ namespace StabilizedLagrangian
       /** the parameters of the run as printed (kept beside the checkpoint) */
       const std::string                    &parameters_used;
       const Parameters::AdaptiveRefinement &adaptive_refinement;
-      const ChosenParameters               &chosen;
-      const Contact::FrictionZones         &contact_zones;
+      /** `Load stepping/End time`: a resume must have some of it left */
+      const double                 &end_time;
+      const ChosenParameters       &chosen;
+      const Contact::FrictionZones &contact_zones;
       /** `Output directory`: the run's, where the checkpoint is */
       const std::string &run_directory;
       /** written while a resume continues the output files (then the run's again) */
