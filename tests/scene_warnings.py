@@ -8,7 +8,11 @@
 - A prescribed displacement not zero at t = 0 (`0; -0.015`, constant in t) is
   applied whole in the first step, and cutting that step cannot reduce it: the
   run must warn, naming the entry; and r_t = automatic must take the length of
-  that first increment (0.015 mm), not the mesh size."""
+  that first increment (0.015 mm), not the mesh size.
+- `Obstacle/Motion` the scene cannot follow: in a two-body scene (the two
+  cylinders) there is no obstacle to move, and in an axisymmetric model (the
+  axisymmetric Hertz ball) a radial motion is no motion of a body of revolution:
+  both must warn, naming the entry; without a motion, neither warns."""
 import os
 import re
 import sys
@@ -53,4 +57,21 @@ check(match is not None and abs(float(match.group(1)) - 0.015) < 1e-12,
       f"constant Dirichlet: r_t's length is the first increment 0.015 mm ({match.group(1) if match else None})")
 log = run("ramped_dirichlet", patin)
 check("not zero at t = 0" not in log, "ramped Dirichlet: no warning")
+
+prm_directory = os.path.join(os.path.dirname(__file__), "..", "prm")
+one_step = sltest.nested_set("Load stepping/Number of load steps", 1)
+radial = sltest.nested_set("Obstacle/Motion/Function expression", "0.01*t; 0")
+for name, scene, motion, warning in (
+        ("two_bodies_moved_obstacle", "two_cylinders.prm", radial,
+         "WARNING: Obstacle/Motion moves the rigid obstacle, but this scene has two deformable bodies"),
+        ("two_bodies", "two_cylinders.prm", "", None),
+        ("axisymmetric_radial_motion", "hertz_axisymmetric.prm", radial,
+         "WARNING: Obstacle/Motion moves the obstacle radially in an axisymmetric model"),
+        ("axisymmetric", "hertz_axisymmetric.prm", "", None)):
+    code, log = sltest.run(executable,
+                           sltest.read_prm(os.path.join(prm_directory, scene)) + one_step + motion +
+                           sltest.QUIET_OUTPUT, f"{workdir}/{name}", expect_success=False)
+    check(code == 0, f"{name}: exit code {code}")
+    check((warning in log) if warning else ("Obstacle/Motion" not in log),
+          f"{name}: " + ("warns, naming Obstacle/Motion" if warning else "no motion warning"))
 check.finish()

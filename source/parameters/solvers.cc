@@ -273,7 +273,7 @@ namespace StabilizedLagrangian
       prm.enter_subsection("Linear solver");
       prm.declare_entry(
           "Method",
-          "direct",
+          "automatic",
           Patterns::Selection("direct|iterative|automatic"),
           "automatic: iterative in 3D from `Automatic threshold` unknowns on, direct below it "
           "and in 2D (decided on each mesh). "

@@ -66,6 +66,19 @@ namespace StabilizedLagrangian
                   << " multiplier DoFs on the contact boundary, "
                   << Utilities::MPI::n_mpi_processes(problem.communicator) << " MPI rank(s), "
                   << problem.system_matrix.n_nonzero_elements() << " matrix entries\n";
+    const Parameters::LinearSolver &linear = problem.linear_solver_parameters;
+    problem.pcout << "  linear solver: "
+                  << (problem.iterative_solver
+                          ? std::string("iterative (GMRES; algebraic multigrid on the displacement "
+                                        "block, Schur complement on the multipliers)")
+                          : "direct (" + linear.direct_solver + ")");
+    if (linear.automatic)
+      problem.pcout << ", by Method = automatic ("
+                    << (dim == 3 ? "iterative in 3D from " +
+                                       std::to_string(linear.automatic_threshold) + " unknowns on"
+                                 : std::string("direct in 2D"))
+                    << "): " << problem.n_u + problem.n_multipliers << " unknowns";
+    problem.pcout << "\n";
     const unsigned int hanging_multipliers =
         Utilities::MPI::sum(static_cast<unsigned int>(
                                 std::count_if(problem.hanging_constraints.get_lines().begin(),

@@ -30,6 +30,38 @@ namespace StabilizedLagrangian
     warn_if_pair_locks();
     warn_if_stick_traction_oscillates();
     warn_if_dirichlet_not_ramped();
+    warn_if_obstacle_motion_ignored();
+  }
+
+  template <int dim>
+  void
+  SceneChecks<dim>::warn_if_obstacle_motion_ignored() const
+  {
+    const bool two_bodies = !view.master_boundaries.empty();
+    if (!two_bodies && !view.axisymmetric)
+      return;
+    // the motion sampled over the load path: its largest translation, and
+    // its largest radial one (x₁ is the radius in an axisymmetric model)
+    double translation = 0., radial = 0.;
+    for (unsigned int k = 0; k <= 20; ++k)
+      {
+        const auto motion = view.obstacle_motion.at(k / 20. * view.load_stepping.end_time);
+        translation       = std::max(translation, motion.translation.norm());
+        radial            = std::max(radial, std::abs(motion.translation[0]));
+      }
+    if (two_bodies && (translation > 0. || view.obstacle_motion.rotates()))
+      view.pcout << "WARNING: Obstacle/Motion moves the rigid obstacle, but this scene has two "
+                    "deformable bodies (Contact/Master boundary ids) and no obstacle: the motion "
+                    "is ignored. Move the second body by a Dirichlet condition on it (Boundary "
+                    "conditions/Dirichlet <name>).\n";
+    else if (!two_bodies && (radial > 0. || view.obstacle_motion.rotates()))
+      view.pcout << "WARNING: Obstacle/Motion "
+                 << (view.obstacle_motion.rotates() ? "turns the obstacle"
+                                                    : "moves the obstacle radially")
+                 << " in an axisymmetric model (Geometry/Axisymmetric), where the obstacle is a "
+                    "body of revolution about the axis x = 0: it may only move along the axis. "
+                    "The motion is applied to the obstacle's profile, which is no rigid motion of "
+                    "the body of revolution.\n";
   }
 
   template <int dim>

@@ -21,6 +21,7 @@ namespace StabilizedLagrangian
             load_stepping,
             chosen.contact_boundaries,
             chosen.master_boundaries,
+            *obstacle_motion,
             partner.get(),
             *fe_pair,
             body_response.slots(),

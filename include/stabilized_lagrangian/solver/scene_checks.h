@@ -60,6 +60,8 @@ namespace StabilizedLagrangian
       /** Γc and a second body's master surface, resolved (ChosenParameters) */
       const std::set<types::boundary_id> &contact_boundaries;
       const std::set<types::boundary_id> &master_boundaries;
+      /** `Obstacle/Motion`: the rigid obstacle's motion over time */
+      const Contact::ObstacleMotion<dim> &obstacle_motion;
       /** the contact partner; null before the first DoFs are set up */
       const Contact::Partner<dim>                     *partner;
       const Discretization::FEPair<dim>               &fe_pair;
@@ -79,7 +81,8 @@ namespace StabilizedLagrangian
     /**
      * @brief The warnings before the first step: a body even its contact
      * cannot hold, a body behind the obstacle, volumetric locking, a
-     * stick-zone traction that oscillates, a Dirichlet condition not ramped.
+     * stick-zone traction that oscillates, a Dirichlet condition not ramped,
+     * an obstacle motion the scene cannot follow.
      */
     void
     warn_before_run() const;
@@ -137,6 +140,14 @@ namespace StabilizedLagrangian
      */
     void
     check_body_is_held() const;
+    /**
+     * Warn of an `Obstacle/Motion` the scene cannot follow: with two
+     * deformable bodies there is no obstacle to move; in an axisymmetric
+     * model only a motion along the axis keeps the obstacle a body of
+     * revolution about it.
+     */
+    void
+    warn_if_obstacle_motion_ignored() const;
     /** Warn when a prescribed displacement is not zero at t = 0 (applied whole in step 1). */
     void
     warn_if_dirichlet_not_ramped() const;
