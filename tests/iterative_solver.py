@@ -120,4 +120,15 @@ for name, threshold, expect_iterative in (("hertz_sphere", 100000, False), ("her
           f"{name}, automatic, threshold {threshold}: {unknowns} unknowns in {int(summary['dimension'])}D, "
           f"{'iterative' if summary['krylov_iterations'] > 0 else 'direct'} "
           f"({int(summary['krylov_iterations'])} GMRES iterations)")
+
+# the default Method is automatic: the Hertz sphere (26k unknowns, above the default
+# threshold of 20000) runs the iterative solver, and its log's banner says so
+out = os.path.join(workdir, "hertz_sphere-default")
+log = sltest.run(executable, sltest.read_prm(os.path.join(prm_dir, "hertz_sphere.prm")) +
+                 sltest.QUIET_OUTPUT, out)[1]
+summary = sltest.read_csv(os.path.join(out, "output", "run_summary.csv"))[0]
+check(summary["krylov_iterations"] > 0 and "linear solver: iterative" in log and
+      "Method = automatic" in log,
+      f"hertz_sphere, default Method: {int(summary['krylov_iterations'])} GMRES iterations, "
+      "the banner names the iterative solver")
 check.finish()
