@@ -13,7 +13,6 @@ the lower edge, to a plane 100 mm below it that it never reaches, minus 144 mm),
 the Newton iterations into near_incompressibility.md (a table between marker comments, the text after
 them kept) in the --output folder (default: the work directory; doc/ with --doc)."""
 import argparse
-import csv
 import os
 import subprocess
 import sys
@@ -21,6 +20,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cook_membrane  # noqa: E402
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -57,11 +57,9 @@ def corner_displacement(n, pair, formulation):
         print(f"  n = {n} {pair} {formulation}: exit code {result.returncode} ({directory})")
         return None
     out = os.path.join(directory, "output")
-    with open(os.path.join(out, "run_summary.csv")) as f:
-        summary = next(csv.DictReader(f))
+    summary = run_output.read_rows(os.path.join(out, "run_summary.csv"), str)[0]
     profile_name = sorted(p for p in os.listdir(out) if p.startswith("profile-"))[-1]
-    with open(os.path.join(out, profile_name)) as f:
-        value = cook_membrane.corner_displacement(csv.DictReader(f))
+    value = cook_membrane.corner_displacement(run_output.read_rows(os.path.join(out, profile_name), str))
     print(f"  n = {n:3d} {pair} {formulation:12s}: u_y = {value:.4f} mm")
     return {"dofs": int(summary["displacement_dofs"]) + int(summary["multiplier_dofs"]),
             "newton": int(summary["newton_iterations"]), "u_y": value}

@@ -18,7 +18,6 @@ and of the GMRES iterations per solve against the DoFs are written below the tab
 --quick: the two coarser meshes only. A table in iterative_solver.md (between marker comments,
 the text after them kept) in the --output folder (default: the work directory; doc/ with --doc)."""
 import argparse
-import csv
 import math
 import os
 import sys
@@ -75,8 +74,7 @@ def summary(key):
     path = os.path.join(case_dirs[key], "output", "run_summary.csv")
     if not os.path.exists(path):
         return None
-    with open(path) as f:
-        return {k: float(v) for k, v in next(csv.DictReader(f)).items()}
+    return run_output.read_csv(path)[0]
 
 
 def last_force(key):

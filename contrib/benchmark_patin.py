@@ -13,6 +13,7 @@ A level is written SUBDIVISIONS:REFINEMENTS, e.g. 2,1:4 (the reference mesh).
 import argparse, csv, datetime, os, platform, re, shlex, subprocess, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 REPO = tool_cli.ROOT
@@ -67,8 +68,7 @@ def run_level(args, level, tmp):
     for s in SECTIONS:  # "| name | calls | min rank | avg | max rank |": take the max
         m = re.search(rf"\|\s*{s}\s*\|\s*\d+\s*\|.*\|.*\|\s*([\d.e+-]+)s\s+\d+\s*\|", log)
         r[s] = float(m[1]) if m else None  # a section the program's timer table does not list
-    with open(os.path.join(outdir, "statistics.csv")) as f:
-        newton = [int(row["newton_iterations"]) for row in csv.DictReader(f)]
+    newton = [int(row["newton_iterations"]) for row in run_output.read_csv(os.path.join(outdir, "statistics.csv"))]
     r.update(steps=len(newton), newton=sum(newton), newton_per_step=" ".join(map(str, newton)))
     with open(os.path.join(outdir, "parameters.prm")) as f:  # the values the program used
         r["solver"] = re.search(r"set Direct solver\s*=\s*(\S+)", f.read())[1]

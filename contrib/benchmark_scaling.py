@@ -24,13 +24,13 @@ already in the work directory. Writes scaling.md
 (between marker comments, the text after them kept) into the --output folder (default: the work
 directory; doc/ with --doc)."""
 import argparse
-import csv
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -72,8 +72,7 @@ def run(name, text, ranks):
         print(f"{name}: {row['outcome']}, {row['wall_time_s']:.0f} s", flush=True)
         if row["outcome"] != "converged":
             return None
-    with open(path) as f:
-        return {k: float(v) for k, v in next(csv.DictReader(f)).items()}
+    return run_output.read_csv(path)[0]
 
 
 def hertz(refinement):

@@ -13,7 +13,6 @@ the estimated relative error in the energy norm; a table in near_incompressibili
 marker comments, the text after them kept) in the --output folder (default: the work directory;
 doc/ with --doc)."""
 import argparse
-import csv
 import os
 import re
 import sys
@@ -66,8 +65,7 @@ def measure(key):
     path = os.path.join(case_dirs[key], "output", "statistics.csv")
     if not os.path.exists(path):
         return None
-    with open(path) as f:
-        steps = [run_output.force_aliases(row) for row in csv.DictReader(f)]
+    steps = run_output.read_rows(path, str)
     if not steps:
         return None
     last = steps[-1]

@@ -6,7 +6,7 @@ Usage: contrib/compare.py SCENE.prm [--executable build/stabilized_lagrangian]
            [--rn-factors F ...] [--rt-factors F ...] [--stoppings fixed|adaptive ...]
            [--cell-shapes hypercube|simplex ...]
            [--choice 'pair=Q2/P1, algorithm=newton, refinement=1, rn_factor=1, rt_factor=1, stopping=fixed,
-                      cell_shape=hypercube' ...]
+                      cell_shape=hypercube' ['pair=Q1/P1, refinement=2' ...] ...]
            [--set 'Section/Sub/Entry=value' ...] [--measure pressure|normal_force|tangential_force|half_width|peak]
            [--target ERROR] [--reference-pair PAIR] [--reference-refinement N]
            [--jobs N] [--timeout SECONDS] [--workdir DIR] [--name NAME] [--output FOLDER | --doc]
@@ -34,7 +34,11 @@ Choices: the cartesian product of --pairs, --algorithms, --refinements,
 scene's own: its pair, its algorithm, refinement 0, factors 1, its `Nonlinear
 solver/Stopping`, its cells), or exactly the --choice entries (keys pair,
 algorithm, refinement, rn_factor, rt_factor, stopping, cell_shape; a key left
-out takes the scene's own). A cell shape sets `Geometry/<model>/Cell shape`
+out takes the scene's own). A --choice flag takes one or more choices, the
+flag may be repeated: `--choice 'pair=Q1/P1' 'pair=Q2/P1, refinement=1'`,
+`--choice pair=Q1/P1 --choice pair=Q2/P1` and `--choice 'pair=Q1/P1,
+pair=Q2/P1'` (within one word a key given again, or ';', starts the next
+choice) are two runs each. A cell shape sets `Geometry/<model>/Cell shape`
 of a built-in geometry: `simplex` splits every cell of the uniformly refined
 mesh into 8 triangles (24 tetrahedra), which gives about the DoFs of the
 quadrilaterals refined once more; it takes the P pairs (P1/P1, P2/P1, ...),
@@ -98,7 +102,6 @@ Exit codes: 0 every run converged; 1 a run (or the reference) failed, timed
 out or wrote a NaN: it is in the table as failed, the rest is written; 2 a
 wrong argument (nothing runs)."""
 import argparse
-import csv
 import glob
 import itertools
 import math
@@ -148,17 +151,35 @@ OUTPUT = robustness_map.OUTPUT_SECTION + robustness_map.nested_set("Output/Write
 
 
 def choice_spec(text):
-    """argparse type: 'key=value, key=value' with the keys of Choice; a dict of typed values."""
-    spec = {}
-    for item in text.split(","):
-        key, sep, value = (part.strip() for part in item.partition("="))
-        if not sep or key not in CHOICE_TYPES or not value:
-            raise argparse.ArgumentTypeError(
-                f"'{item.strip()}' in '{text}' is not key=value with a key of {', '.join(CHOICE_TYPES)}")
-        try:
-            spec[key] = CHOICE_TYPES[key](value)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{key}: '{value}' is not a {CHOICE_TYPES[key].__name__}") from None
+    """argparse type: one or more choices, 'key=value, key=value' with the keys of Choice; a key
+    given again, or ';', starts the next choice ('pair=Q1/P1, pair=Q2/P1' is two). A list of
+    dicts of typed values."""
+    specs = []
+    for group in (group for group in text.split(";") if group.strip()):
+        spec = {}
+        for item in group.split(","):
+            key, sep, value = (part.strip() for part in item.partition("="))
+            if not sep or key not in CHOICE_TYPES or not value:
+                raise argparse.ArgumentTypeError(
+                    f"'{item.strip()}' in '{text}' is not key=value with a key of {', '.join(CHOICE_TYPES)}"
+                    + ("" if item.strip() else " (a choice with spaces after its commas is one word: quote it)"))
+            if key in spec:
+                specs.append(spec)
+                spec = {}
+            try:
+                spec[key] = CHOICE_TYPES[key](value)
+            except ValueError:
+                raise argparse.ArgumentTypeError(f"{key}: '{value}' is not a {CHOICE_TYPES[key].__name__}") from None
+        specs.append(spec)
+    if not specs:
+        raise argparse.ArgumentTypeError(f"'{text}' names no choice")
+    for spec in specs:
+        checked_choice(spec)
+    return specs
+
+
+def checked_choice(spec):
+    """The values of one choice that no scene allows: ArgumentTypeError naming the first."""
     if spec.get("algorithm", "nested") not in ALGORITHMS:
         raise argparse.ArgumentTypeError(f"algorithm '{spec['algorithm']}' is not one of {', '.join(ALGORITHMS)}")
     if spec.get("stopping", "fixed") not in STOPPINGS:
@@ -169,7 +190,6 @@ def choice_spec(text):
     for key in ("rn_factor", "rt_factor"):
         if spec.get(key, 1) <= 0:
             raise argparse.ArgumentTypeError(f"{key} {spec[key]} is not > 0")
-    return spec
 
 
 def parameters_of(text, path):
@@ -271,7 +291,7 @@ def choices_of(args, scene, parser):
                              "cell_shapes") if getattr(args, k)]
         if lists:
             parser.error(f"--choice lists the runs itself: it excludes --{lists[0].replace('_', '-')}")
-        choices = [own._replace(**spec) for spec in args.choice]
+        choices = [own._replace(**spec) for word in args.choice for spec in word]
     else:
         lists = [getattr(args, k) or [getattr(own, f)] for k, f in (
             ("pairs", "pair"), ("algorithms", "algorithm"), ("refinements", "refinement"),
@@ -326,9 +346,7 @@ def read_table(path):
             return float(text)
         except ValueError:
             return text
-    with open(path, newline="") as f:
-        return [run_output.force_aliases({k: value(v) for k, v in row.items()})
-                for row in csv.DictReader(f)]
+    return run_output.read_rows(path, value)
 
 
 def run_results(case_dir):
@@ -647,10 +665,12 @@ def parse_arguments():
     parser.add_argument("--cell-shapes", nargs="+", choices=CELL_SHAPES, metavar="SHAPE",
                         help="hypercube or simplex: Geometry/<model>/Cell shape of a built-in geometry "
                              "(default: the scene's)")
-    parser.add_argument("--choice", action="append", type=choice_spec, default=[], metavar="'key=value, ...'",
-                        help="one run (repeatable), instead of the product of the lists: keys pair, algorithm, "
-                             "refinement, rn_factor, rt_factor, stopping, cell_shape; the scene's own for a key "
-                             "left out")
+    parser.add_argument("--choice", action="extend", nargs="+", type=choice_spec, default=[],
+                        metavar="'key=value, ...'",
+                        help="the runs, instead of the product of the lists: one or more choices per flag "
+                             "(separate words, or one word where ';' or a key given again starts the next "
+                             "choice), the flag repeatable; keys pair, algorithm, refinement, rn_factor, "
+                             "rt_factor, stopping, cell_shape; the scene's own for a key left out")
     parser.add_argument("--set", action="append", default=[], type=tool_cli.setting,
                         metavar="'Section/Sub/Entry=value'", help="an entry set in every run, repeatable")
     parser.add_argument("--measure", choices=sorted(MEASURES), default="pressure",

@@ -23,13 +23,13 @@ doc/newton_criterion.md with --doc: replaced if the file has it (between its
 begin/end comments), appended otherwise. Each run is in
 WORKDIR/<scene>/<algorithm>/<binary> with its input.prm and log.txt."""
 import argparse
-import csv
 import os
 import shlex
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 from robustness_map import GENERALIZED_NEWTON, nested_set, write_section  # noqa: E402
 
@@ -60,8 +60,7 @@ def run(executable, text, workdir):
         with open(os.path.join(workdir, "log.txt")) as f:
             tail = [line.strip() for line in f if line.strip()][-1:]
         return None, f"exit code {code}: {tail[0] if tail else ''}"
-    with open(summary_path) as f:
-        return next(csv.DictReader(f)), None
+    return run_output.read_rows(summary_path, str)[0], None
 
 
 def cell(summary, error):

@@ -16,7 +16,6 @@ that failed and were cut in `failed_attempt_newton_iterations`).
 Exits with 2 and a message if OUTPUT_DIR has no iterations.csv or a STEP is
 not a load step of the run."""
 import argparse
-import csv
 import os
 import sys
 from collections import OrderedDict
@@ -36,8 +35,7 @@ def read_loops(output_dir):
     path = os.path.join(output_dir, "iterations.csv")
     if not os.path.isfile(path):
         raise TableError(f"{path} not found (is {output_dir} an output directory of the program?)")
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
+    rows = run_output.read_rows(path, str)
     steps = OrderedDict()
     for r in rows:
         steps.setdefault(int(r["step"]), OrderedDict()).setdefault(

@@ -13,7 +13,6 @@ patin_iteration_tables.md, with the run time and the Newton totals: in the
 --output folder (default: the work directory; or --output FILE.md), in doc/
 with --doc."""
 import argparse
-import csv
 import os
 import subprocess
 import sys
@@ -21,6 +20,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import iteration_table  # noqa: E402
 import robustness_map  # noqa: E402
+import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 
 root = tool_cli.ROOT
@@ -68,8 +68,7 @@ for (name, title), (suffix, element) in ((scene, element) for element in element
             lines.append("```")
             lines.append("")
             continue
-        with open(os.path.join(workdir, "output", "run_summary.csv")) as f:
-            summary = next(csv.DictReader(f))
+        summary = run_output.read_rows(os.path.join(workdir, "output", "run_summary.csv"), str)[0]
         # the Newton iterations of attempts that failed and were cut (not in the table below)
         failed = int(summary.get("failed_attempt_newton_iterations") or 0)
         lines.append(f"{summary['load_steps']} load steps, {summary['displacement_dofs']} displacement + "

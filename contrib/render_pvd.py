@@ -20,7 +20,13 @@ What an image shows:
   (Contact/Master boundary ids), which is drawn as the body is;
 - a colour bar with the field's unit, and in the upper left corner the run,
   the load step and its time, the field's largest value, the normal force
-  (statistics.csv), the displacement scale and the obstacle.
+  (statistics.csv: N, in plane strain N/mm per unit thickness), the
+  displacement scale and the obstacle.
+
+The contact surface is the slave's (the nodes whose contact_status is not -1):
+where two bodies touch, the master's nodes at the same place are not on it.
+Files of the output schema 1 (CHANGELOG.md: VTU fields without their units)
+are read too.
 
 Views (--view): in 2D the whole body (default) or the contact zone and a few
 cells around it; in 3D the contact zone (default): the camera is on the
@@ -163,7 +169,7 @@ def read_step(path):
     reader = vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu") else vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
-    grid = merged_grid(reader.GetOutput())
+    grid = merged_grid(run_output.current_vtu_names(reader.GetOutput()))
     surface = vtkDataSetSurfaceFilter()
     surface.SetInputData(grid)
     surface.PassThroughCellIdsOn()
@@ -449,17 +455,9 @@ def render(step, time, data, marked, values, colour_range, scale, png):
     if marked is not None:
         if kind == "status":
             contact_cells = [[i] for i in np.nonzero(marked)[0]]
-            body_cells = cells
-        elif is_3d:
-            contact_cells = [c for c in cells if marked[c].all()]
-            body_cells = [c for c in cells if not marked[c].all()]
         else:
-            edges = boundary_edges(polydata(points, cells), False)
-            edge_points = vtk_to_numpy(edges.GetPoints().GetData()).astype(float)
-            index = {tuple(p): i for i, p in enumerate(points)}
-            contact_cells = [[index[tuple(edge_points[i])] for i in c] for c in cells_of(edges)]
-            contact_cells = [c for c in contact_cells if marked[c].all()]
-            body_cells = cells
+            contact_cells = run_output.contact_strip(cells, marked, is_3d)
+        body_cells = [c for c in cells if not marked[c].all()] if is_3d and kind != "status" else cells
     else:
         contact_cells, body_cells = [], cells
 
@@ -572,9 +570,8 @@ def render(step, time, data, marked, values, colour_range, scale, png):
         lines.append(f"largest {title}: {shown.max():.4g} {unit}"
                      + (f" (colour range {colour_range[0]:.4g} .. {colour_range[1]:.4g})"
                         if args.range or len(steps) > 1 else ""))
-    force = normal_forces.get(step)
-    if force is not None:
-        lines.append(f"normal contact force: {force:.4g} N")
+    if step in statistics_rows:
+        lines.append(run_output.force_label(statistics_rows[step]))
     lines.append("displacement: true scale" if scale == 1 else
                  f"displacement magnified x {scale:.3g}" + (" (the obstacle is at its true place)" if obstacle else ""))
     lines.append(describe_obstacle() + ("; seen through it (wireframe), 50 degrees off its normal"
@@ -614,8 +611,8 @@ run_name = os.path.basename(os.path.normpath(os.path.abspath(args.output_dir)))
 is_3d = int(parameters.get("Dimension", "0")) == 3
 profiles = run_output.profile_steps(args.output_dir)
 statistics = os.path.join(args.output_dir, "statistics.csv")
-normal_forces = ({int(r["step"]): r["normal_force_N"] for r in run_output.read_csv(statistics)}
-                 if os.path.isfile(statistics) else {})
+statistics_rows = ({int(r["step"]): r for r in run_output.read_csv(statistics)}
+                   if os.path.isfile(statistics) else {})
 os.makedirs(folder, exist_ok=True)
 
 loaded = {}
@@ -629,6 +626,8 @@ for step in steps:
     # directory), the step's own if there is one; step 0 has none
     profile = profiles.get(step) or (profiles[min(profiles, key=lambda s: abs(s - step))] if profiles else None)
     marked = contact_nodes(points, profile, size)
+    if marked is not None:  # the slave's nodes only (two bodies: the master's at the same place)
+        marked = np.array(run_output.on_contact_surface(marked, point_array(data, "contact_status")), dtype=bool)
     values = field_values(data, args.field)
     loaded[step] = (data, marked, values, size)
 colour_range = field_range([v[m] if m is not None and m.any() else v for _, m, v, _ in loaded.values()])

@@ -1,5 +1,8 @@
 #!/usr/bin/python3
-"""Reading a run's output directory (imported by render_pvd.py and plot_profiles.py).
+"""Reading a run's output directory (imported by the contrib/ tools that read a run's files).
+
+The names of the output's CSV columns and VTU fields of the previous output schema
+(CHANGELOG.md) are read under the current ones too: current_names(), current_vtu_names().
 
 The parameters the run used (parameters.prm, in the directory or, for the
 cycle-N/ directories of adaptive refinement, the one above), the rigid
@@ -155,20 +158,102 @@ def profile_steps(output_dir):
     return dict(sorted(found.items()))
 
 
-def force_aliases(row):
-    """A row of a run's CSV file with each force column of a plane strain run, named per unit
-    thickness (`..._N_per_mm`), also under its 3D name (`..._N`), so that one reader serves both
-    dimensions."""
+# The output schema (CHANGELOG.md; run_summary.csv's `schema_version`, none before 2): the names
+# schema 1 wrote that schema 2 renamed, old -> new. The tools read the old names too, for one
+# release: VTU fields through vtu_array(), CSV columns through current_names().
+SCHEMA_VERSION = 2
+RENAMED_VTU_FIELDS = {"displacement": "displacement_mm", "stress": "stress_MPa",
+                      "von_mises_stress": "von_mises_stress_MPa", "contact_pressure": "contact_pressure_MPa",
+                      "tangential_traction": "tangential_traction_MPa", "gap": "gap_mm",
+                      "slip_increment": "slip_increment_mm"}
+# CSV columns: in plane strain every force column `<name>_N` became `<name>_N_per_mm`
+OLD_FORCE_SUFFIX, FORCE_SUFFIX_PER_MM = "_N", "_N_per_mm"
+
+
+def plane_strain(parameters):
+    """Whether the run of these parameters (read_parameters()) is a plane strain one, whose forces
+    are per unit thickness (N/mm): 2D and not axisymmetric; False when unknown ({})."""
+    return (bool(parameters) and parameters.get("Dimension", "2").strip() == "2"
+            and parameters.get("Geometry/Axisymmetric", "false").strip().lower() != "true")
+
+
+def current_names(row, plane_strain_run=False):
+    """A row of a run's CSV file, its columns also under the names of the current schema: the
+    force columns of a plane strain run of schema 1 (`..._N`, in N per mm of thickness) also as
+    `..._N_per_mm`. And each force column named per unit thickness also under its 3D name
+    (`..._N`), so that one reader serves both dimensions."""
+    if plane_strain_run and not any(key.endswith(FORCE_SUFFIX_PER_MM) for key in row):
+        for key in list(row):
+            if key.endswith(OLD_FORCE_SUFFIX):
+                row.setdefault(key[:-len(OLD_FORCE_SUFFIX)] + FORCE_SUFFIX_PER_MM, row[key])
     for key in list(row):
-        if key.endswith("_N_per_mm"):
-            row.setdefault(key[:-len("_per_mm")], row[key])
+        if key.endswith(FORCE_SUFFIX_PER_MM):
+            row.setdefault(key[:-len(FORCE_SUFFIX_PER_MM)] + OLD_FORCE_SUFFIX, row[key])
     return row
 
 
+def force_aliases(row):
+    """current_names() of a row of a run whose dimension is not known."""
+    return current_names(row)
+
+
+def force(row, name):
+    """(value, unit) of the force column `name` (normal_force, contact_force_x, ...) of a row of
+    current_names(): N/mm in plane strain (per unit thickness), else N (3D, axisymmetric)."""
+    if name + FORCE_SUFFIX_PER_MM in row:
+        return row[name + FORCE_SUFFIX_PER_MM], "N/mm"
+    return row[name + OLD_FORCE_SUFFIX], "N"
+
+
+def read_rows(path, value=float):
+    """The rows of a run's CSV file as dicts of value(text), under current_names() (the run's
+    parameters.prm, beside the file or above it, tells a plane strain run)."""
+    plane = plane_strain(run_parameters(os.path.dirname(os.path.abspath(path))))
+    with open(path, newline="") as f:
+        return [current_names({k: value(v) for k, v in row.items()}, plane) for row in csv.DictReader(f)]
+
+
 def read_csv(path):
-    """The rows of a CSV file of numbers, as dicts of floats (force_aliases() added)."""
-    with open(path) as f:
-        return [force_aliases({k: float(v) for k, v in row.items()}) for row in csv.DictReader(f)]
+    """The rows of a CSV file of numbers, as dicts of floats (read_rows())."""
+    return read_rows(path)
+
+
+def current_vtu_names(grid):
+    """A VTU's data set as VTK read it, each point or cell array of a schema 1 name renamed to
+    its current one (displacement -> displacement_mm)."""
+    for data in (grid.GetPointData(), grid.GetCellData()):
+        for old, new in RENAMED_VTU_FIELDS.items():
+            array = data.GetArray(old)
+            if array is not None and data.GetArray(new) is None:
+                array.SetName(new)
+    return grid
+
+
+def force_label(row):
+    """The normal contact force of a row of statistics.csv (current_names()) with its unit."""
+    value, unit = force(row, "normal_force")
+    return f"normal contact force: {value:.4g} {unit}"
+
+
+def on_contact_surface(marked, status):
+    """Which points of a VTU are nodes of the contact surface Γc: those at a node of the profile
+    (marked) whose contact_status is not -1 (-1 is off Γc: where two bodies touch, the master's
+    points at the place of the slave's nodes)."""
+    return [bool(m) and s != -1 for m, s in zip(marked, status)]
+
+
+def contact_strip(cells, on_surface, is_3d):
+    """What a picture draws of the contact surface: the faces (3D) or the boundary edges (2D) of
+    the cells (lists of point indices, a 2D cell's in order around it) whose points are all on
+    it (on_contact_surface()); edges as pairs of point indices, so that points at one place stay
+    apart."""
+    if is_3d:
+        return [c for c in cells if all(on_surface[i] for i in c)]
+    count = {}
+    for cell in cells:
+        for edge in zip(cell, cell[1:] + cell[:1]):
+            count[frozenset(edge)] = count.get(frozenset(edge), 0) + 1
+    return [sorted(edge) for edge, n in count.items() if n == 1 and all(on_surface[i] for i in edge)]
 
 
 def step_times(output_dir):

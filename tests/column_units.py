@@ -4,7 +4,8 @@
 statistics.csv, iterations.csv and refinement_cycles.csv, and N/mm in the step lines of a plane
 strain run. The scene is tests/scenes/eccentric_plate.prm: it has every kind of force column
 but the zones' (contact force, normal and tangential force, a rigid plate's force, the residual,
-the reaction of a single-node Dirichlet condition)."""
+the reaction of a single-node Dirichlet condition). run_summary.csv starts with the output
+schema's version (`schema_version`), the one contrib/run_output.py reads and CHANGELOG.md lists."""
 import csv
 import os
 import sys
@@ -12,6 +13,8 @@ import sltest
 
 executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "CHANGELOG.md")) as f:
+    changelog = f.read()
 
 
 def scene(dim, axisymmetric=False):
@@ -48,6 +51,16 @@ for name, dim, axisymmetric, unit in (("plane strain", 2, False, "N_per_mm"), ("
     check(len(forces) >= 8 and not wrong,
           f"{name}: the {len(forces)} force columns end in _{unit} ({', '.join(sorted(set(forces))[:4])}, ...)"
           + (f"; not: {wrong}" if wrong else ""))
+    summary = os.path.join(out, "output", "run_summary.csv")
+    rows = []
+    if os.path.exists(summary):
+        with open(summary) as f:
+            rows = list(csv.reader(f))
+    version = sltest.run_output.SCHEMA_VERSION
+    check(len(rows) == 2 and rows[0][0] == "schema_version" and rows[1][0] == str(version)
+          and f"\n| {version} |" in changelog,
+          f"{name}: run_summary.csv starts with {rows[0][0] + ' = ' + rows[1][0] if len(rows) == 2 else None} "
+          f"(contrib/run_output.py's {version}, a row of CHANGELOG.md)")
     step_lines = [line for line in log.splitlines() if line.startswith("step ")]
     expected = " N/mm, scaled" if unit == "N_per_mm" else " N, scaled"
     check(step_lines and all(expected in line for line in step_lines),

@@ -8,7 +8,9 @@ the pressure and of the half-width decrease with refinement for each pair;
 --target marks the cheapest choice that meets it, the one of least wall time.
 A run that fails is a failed row and exit code 1, not a crash; a bad argument
 stops the tool with exit code 2 before anything runs. Each row names its
-stopping (`Nonlinear solver/Stopping`, the scene's: fixed). The half ball split
+stopping (`Nonlinear solver/Stopping`, the scene's: fixed). --choice takes a
+list: several words after one flag, or in one word a key given again (or ';')
+starts the next choice. The half ball split
 into triangles (`cell_shape=simplex`) with P1/P1 runs beside Q1/P1, each row
 naming its cell shape; a Q pair on simplices is refused."""
 import csv
@@ -92,21 +94,25 @@ check(len(table_rows) == 4 and "contrib/compare.py" in "\n".join(lines) and "Her
 check(os.path.getsize(os.path.join(output, "compare_tiny_hertz.png")) > 10000
       if os.path.exists(os.path.join(output, "compare_tiny_hertz.png")) else False, "the Pareto plot")
 
-# a run that fails (one Newton iteration per load step, no cuts): a failed row, exit code 1
-code, out, err = run("--choice", "refinement=0", "--set", "Nonlinear solver/Maximum Newton iterations per load step=1",
+# runs that fail (one Newton iteration per load step, no cuts): failed rows, exit code 1; two
+# choices in one comma-separated --choice word (the key given again starts the next one)
+code, out, err = run("--choice", "refinement=0, refinement=1",
+                     "--set", "Nonlinear solver/Maximum Newton iterations per load step=1",
                      "--set", "Load stepping/Maximum step cuts=0", "--workdir", os.path.join(workdir, "failing"))
 rows = []
 failing = os.path.join(workdir, "failing", "compare_tiny_hertz.csv")
 if os.path.exists(failing):
     with open(failing, newline="") as f:
         rows = list(csv.DictReader(f))
-check(code == 1 and len(rows) == 1 and rows[0]["outcome"] == "diverged" and rows[0]["pressure_l2_error"] == ""
-      and "Traceback" not in err, f"a failing run: exit code {code}, rows {rows}, stderr '{err.strip()[-300:]}'")
+check(code == 1 and [r["global_refinements"] for r in rows] == ["2", "3"]
+      and all(r["outcome"] == "diverged" and r["pressure_l2_error"] == "" for r in rows)
+      and "Traceback" not in err, f"failing runs of --choice 'refinement=0, refinement=1': exit code {code}, "
+      f"rows {[(r['global_refinements'], r['outcome']) for r in rows]}, stderr '{err.strip()[-300:]}'")
 
 # quadrilaterals against triangles: the built-in half ball split into triangles (`cell_shape`), one
-# level coarser (each quadrilateral gives 8 triangles), with P1/P1
+# level coarser (each quadrilateral gives 8 triangles), with P1/P1; two choices after one --choice
 shapes = os.path.join(workdir, "shapes")
-code, out, err = run("--choice", "pair=Q1/P1", "--choice", "pair=P1/P1, cell_shape=simplex, refinement=-1",
+code, out, err = run("--choice", "pair=Q1/P1", "pair=P1/P1, cell_shape=simplex, refinement=-1",
                      "--jobs", "2", "--workdir", shapes)
 rows = []
 if os.path.exists(os.path.join(shapes, "compare_tiny_hertz.csv")):
@@ -123,7 +129,9 @@ for arguments, message in ((["--jobs", "0"], "--jobs"), (["--pairs", "Q9/P9"], "
                            (["--measure", "normal_force"], "--measure"), (["--refinements", "-3"], "negative"),
                            (["--choice", "stopping=sometimes"], "stopping"),
                            (["--choice", "cell_shape=round"], "cell_shape"),
-                           (["--choice", "pair=Q1/P1, cell_shape=simplex"], "the P pairs are for simplices")):
+                           (["--choice", "pair=Q1/P1, cell_shape=simplex"], "the P pairs are for simplices"),
+                           (["--choice", "pair=Q1/P1,", "refinement=1"], "quote it"),
+                           (["--choice", "pair=Q1/P1; stopping=sometimes"], "stopping")):
     bad = os.path.join(workdir, "bad")
     code, out, err = run(*arguments, "--workdir", bad)
     ran = [d for d in os.listdir(bad) if os.path.isdir(os.path.join(bad, d))] if os.path.isdir(bad) else []

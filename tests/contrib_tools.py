@@ -4,7 +4,9 @@ answers --help with exit code 0; contrib/iteration_table.py, on a real run of
 the elastic patin, prints for each step the Newton total of statistics.csv and
 the run's cumulative count up to it (`cumulative_newton_iterations`), also
 when the step is printed alone, and stops with an error (exit code 2, nothing
-on standard output) for a step the run does not have."""
+on standard output) for a step the run does not have. The run's CSV files under the
+column names of output schema 1 (CHANGELOG.md: plane strain forces `_N`) are read
+by contrib/run_output.py under the current ones (`_N_per_mm`), with the same values."""
 import glob
 import os
 import re
@@ -70,4 +72,41 @@ if sltest.run_checked(executable, text, workdir, check, "elastic patin"):
     code, out, err = run([table_tool, workdir])
     check(code == 2 and "iterations.csv not found" in err,
           f"a directory without iterations.csv: exit code {code}, stderr '{err.strip()[-200:]}'")
+
+    # the run's CSV files under the column names of schema 1 (CHANGELOG.md: plane strain forces
+    # `_N`, no schema_version): contrib/run_output.py reads them under the current names too
+    run_output = sltest.run_output
+    old = os.path.join(workdir, "schema_1")
+    shutil.rmtree(old, ignore_errors=True)
+    shutil.copytree(output, old)
+    renamed = 0
+    for name in ("statistics.csv", "iterations.csv", "run_summary.csv"):
+        with open(os.path.join(old, name)) as f:
+            header, rest = f.read().split("\n", 1)
+        columns = [c[:-len("_per_mm")] if c.endswith("_N_per_mm") else c for c in header.split(",")]
+        renamed += sum(c.endswith("_N_per_mm") for c in header.split(","))
+        keep = [i for i, c in enumerate(columns) if c != "schema_version"]
+        lines = [",".join(columns[i] for i in keep)] + [",".join(row.split(",")[i] for i in keep)
+                                                         for row in rest.splitlines() if row]
+        with open(os.path.join(old, name), "w") as f:
+            f.write("\n".join(lines) + "\n")
+    with open(os.path.join(output, "run_summary.csv")) as f:
+        summary_header = f.readline().strip().split(",")
+    check(renamed >= 6 and summary_header[0] == "schema_version",
+          f"the plane strain run names {renamed} force columns _N_per_mm, run_summary.csv starts with "
+          f"{summary_header[0]}")
+    for name in ("statistics.csv", "iterations.csv"):
+        new_rows = run_output.read_csv(os.path.join(output, name))
+        old_rows = run_output.read_csv(os.path.join(old, name))
+        with open(os.path.join(old, name)) as f:
+            old_header = f.readline()
+        missing = sorted({k for row, o in zip(new_rows, old_rows) for k in row if o.get(k) != row[k]})
+        check("_N_per_mm" not in old_header and len(old_rows) == len(new_rows) > 0 and not missing,
+              f"{name} with the column names of schema 1: read with every current column and value"
+              + (f"; not: {missing[:5]}" if missing else ""))
+    value, unit = run_output.force(run_output.read_csv(os.path.join(old, "statistics.csv"))[-1], "normal_force")
+    check(unit == "N/mm" and value == statistics[steps[-1]]["normal_force_N_per_mm"],
+          f"the normal force of the schema 1 file: {value} {unit} (plane strain: N/mm)")
+    code, out, err = run([table_tool, old])
+    check(code == 0 and totals(out) == expected, f"iteration_table.py on the schema 1 files: exit code {code}")
 check.finish()

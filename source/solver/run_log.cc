@@ -20,6 +20,14 @@
 
 namespace StabilizedLagrangian
 {
+  namespace
+  {
+    // the version of the output's names (CSV columns, VTU fields), the first
+    // column of run_summary.csv: it grows with every rename, and CHANGELOG.md
+    // lists each renamed name with its old one (contrib/run_output.py reads both)
+    constexpr unsigned int output_schema_version = 2;
+  } // namespace
+
   template <int dim>
   double
   RunLog<dim>::peak_memory() const
@@ -221,6 +229,7 @@ namespace StabilizedLagrangian
     if (Utilities::MPI::this_mpi_process(problem.communicator) != 0)
       return;
     SummaryRow table;
+    table.add("schema_version", output_schema_version);
     table.add("dimension", dim);
     table.add("cells", problem.triangulation.n_global_active_cells());
     table.add("displacement_dofs", problem.n_u);
