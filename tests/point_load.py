@@ -8,7 +8,10 @@ P = 1000 N/mm downwards until t = 0.5, then also Q = 0.5 mu P sideways.
   (generalized Newton: the contact force is that of the last assembled system); the body
   sticks in the middle, so it neither slides nor turns.
 - The same on 2 MPI ranks.
-- Refused with a message: a point that is not a vertex of the mesh."""
+- Refused with a message: a point that is not a vertex of the mesh.
+- A point load on a vertex a Dirichlet condition holds (the patin's pressed top face) is taken by
+  the support's reaction: the run warns, naming the load and the held components; the free
+  vertex above does not."""
 import os
 import sys
 import sltest
@@ -40,7 +43,9 @@ check(f"set Friction coefficient = {MU}" in text, "the scene has the friction co
 runs = {}
 for ranks in (1, 2):
     out = os.path.join(workdir, f"np{ranks}")
-    sltest.run(executable, text + sltest.GENERALIZED_NEWTON + sltest.QUIET_OUTPUT, out, ranks=ranks)
+    log = sltest.run(executable, text + sltest.GENERALIZED_NEWTON + sltest.QUIET_OUTPUT, out,
+                     ranks=ranks)[1]
+    check("holds its vertex" not in log, f"{ranks} rank(s): no warning of a held point load")
     rows = sltest.read_csv(os.path.join(out, "output", "statistics.csv"))
     runs[ranks] = rows
     worst = max(max(abs(row["normal_force_N"] - P * min(2 * row["time"], 1)),
@@ -54,4 +59,16 @@ code, log = sltest.run(executable, scene("0.1, 50") + sltest.QUIET_OUTPUT, os.pa
                        expect_success=False)
 check(code == 1 and "Point load middle/Point" in log and "no vertex" in log,
       f"a point off the vertices: refused ({log.strip().splitlines()[-1][:160]})")
+held = base.replace("subsection Boundary conditions\n", f"""subsection Boundary conditions
+  subsection Point load top
+    set Point = 0, 50
+    subsection Force
+      set Function expression = {Q}*t; -{P}*t
+    end
+  end
+""", 1) + sltest.nested_set("Load stepping/Number of load steps", 2)
+code, log = sltest.run(executable, held + sltest.QUIET_OUTPUT, os.path.join(workdir, "held"),
+                       expect_success=False)
+check(code == 0 and "WARNING: Boundary conditions/Point load top: a Dirichlet condition holds its "
+      "vertex in x, y" in log, f"a point load on a held vertex: warned (exit code {code})")
 check.finish()

@@ -110,6 +110,15 @@ namespace StabilizedLagrangian
     }
 
     template <int dim>
+    void
+    Interface<dim>::warn_if_held(const Problem<dim> &,
+                                 const AffineConstraints<double> &,
+                                 double,
+                                 const ConditionalOStream &) const
+    {
+    }
+
+    template <int dim>
     std::optional<IndexSet>
     Interface<dim>::prescribed_boundary_dofs(const Problem<dim> &, const unsigned int) const
     {

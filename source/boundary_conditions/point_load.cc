@@ -74,6 +74,38 @@ namespace StabilizedLagrangian
           external_force(vertex[c]) += value(c);
       }
 
+      void
+      warn_if_held(const Problem<dim>              &problem,
+                   const AffineConstraints<double> &constraints,
+                   const double                     end_time,
+                   const ConditionalOStream        &out) const override
+      {
+        // A component a Dirichlet condition holds (constrained to a value,
+        // with no entries: not a hanging node's nor a plate's tie) takes the
+        // force into its reaction: the body never feels it.
+        unsigned int held = 0;
+        if (problem.locally_owned.is_element(dofs[0]))
+          for (unsigned int k = 0; k <= 20; ++k)
+            {
+              const Vector<double> value = value_at_time(*force, k / 20. * end_time);
+              for (unsigned int c = 0; c < dim; ++c)
+                if (value(c) != 0. && constraints.is_constrained(dofs[c]) &&
+                    constraints.get_constraint_entries(dofs[c])->empty())
+                  held |= 1u << c;
+            }
+        held = Utilities::MPI::max(held, problem.communicator);
+        if (held == 0)
+          return;
+        std::string components;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (held & (1u << c))
+            components += std::string(components.empty() ? "" : ", ") + "xyz"[c];
+        out << "WARNING: " << this->section() << ": a Dirichlet condition holds its vertex in "
+            << components
+            << ": that part of the force goes into the support's reaction and does not load "
+               "the body. Move the Point, or the load to a vertex the supports leave free.\n";
+      }
+
     private:
       const std::optional<Point<dim>>                          point; ///< a vertex of the mesh (mm)
       const std::shared_ptr<Parameters::BoundaryFunction<dim>> force; ///< N (N/mm in 2D)

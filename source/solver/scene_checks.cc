@@ -29,7 +29,7 @@ namespace StabilizedLagrangian
     warn_if_body_behind_obstacle();
     warn_if_pair_locks();
     warn_if_stick_traction_oscillates();
-    warn_if_dirichlet_not_ramped();
+    warn_of_boundary_conditions();
     warn_if_obstacle_motion_ignored();
   }
 
@@ -417,10 +417,14 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  SceneChecks<dim>::warn_if_dirichlet_not_ramped() const
+  SceneChecks<dim>::warn_of_boundary_conditions() const
   {
     for (const auto &condition : view.boundary_conditions)
-      condition->warn_if_not_ramped(view.boundary, view.pcout);
+      {
+        condition->warn_if_not_ramped(view.boundary, view.pcout);
+        condition->warn_if_held(
+            view.boundary, view.newton_constraints, view.load_stepping.end_time, view.pcout);
+      }
   }
 
   template class SceneChecks<2>;

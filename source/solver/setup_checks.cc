@@ -21,6 +21,7 @@ namespace StabilizedLagrangian
             load_stepping,
             chosen.contact_boundaries,
             chosen.master_boundaries,
+            newton_constraints,
             *obstacle_motion,
             partner.get(),
             *fe_pair,

@@ -255,6 +255,18 @@ namespace StabilizedLagrangian
       warn_if_not_ramped(const Problem<dim> &problem, const ConditionalOStream &out) const;
 
       /**
+       * @brief Collective: warn on @p out if what it applies is taken by a
+       * support instead of the body: @p constraints are the Newton system's
+       * (a DoF a Dirichlet condition holds is constrained to a value, with
+       * no entries); @p end_time bounds the load path.
+       */
+      virtual void
+      warn_if_held(const Problem<dim>              &problem,
+                   const AffineConstraints<double> &constraints,
+                   double                           end_time,
+                   const ConditionalOStream        &out) const;
+
+      /**
        * @brief The DoFs of component @p c of its boundary that it prescribes;
        * none if it prescribes no boundary's (the linked DoFs' checks).
        */

@@ -60,6 +60,8 @@ namespace StabilizedLagrangian
       /** Γc and a second body's master surface, resolved (ChosenParameters) */
       const std::set<types::boundary_id> &contact_boundaries;
       const std::set<types::boundary_id> &master_boundaries;
+      /** the Newton system's constraints: hanging nodes and the homogeneous Dirichlet ones */
+      const AffineConstraints<double> &newton_constraints;
       /** `Obstacle/Motion`: the rigid obstacle's motion over time */
       const Contact::ObstacleMotion<dim> &obstacle_motion;
       /** the contact partner; null before the first DoFs are set up */
@@ -148,9 +150,12 @@ namespace StabilizedLagrangian
      */
     void
     warn_if_obstacle_motion_ignored() const;
-    /** Warn when a prescribed displacement is not zero at t = 0 (applied whole in step 1). */
+    /**
+     * Warn when a prescribed displacement is not zero at t = 0 (applied whole
+     * in step 1), or a support takes a load (a point load on a held vertex).
+     */
     void
-    warn_if_dirichlet_not_ramped() const;
+    warn_of_boundary_conditions() const;
     /** Warn when a material is nearly incompressible for the displacement degree (locking). */
     void
     warn_if_pair_locks() const;
