@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <new>
 #include <thread>
@@ -230,7 +231,11 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool                       root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  // The log goes out line by line also when it is redirected to a file, so
+  // that a run killed (by the user, a batch system, a crash) leaves every
+  // line it printed (std::cout writes through C's stdout, synchronised).
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
       const std::vector<std::string> args(argv + 1, argv + argc);
