@@ -13,8 +13,12 @@ a missing mesh file is refused with a message; a mesh of triangles runs with
 the P1/P1 pair and is refused with a Q pair, by a message naming the P pairs;
 two bodies of tetrahedra are refused (the master surface holds line and
 quadrilateral faces) with the same message whether their surfaces are given by
-name or by id."""
+name or by id; a .msh with a self-intersecting (bow-tie) quadrilateral is
+refused with a message naming the cell's place, not run into a singular
+system (an inverted cell, its vertices in the other order, deal.II's GridIn
+turns round itself)."""
 import os
+import re
 import sys
 import sltest
 
@@ -193,5 +197,37 @@ for name, surfaces in (("by name", ("cyl_contact", "blk_contact", "blk_bottom", 
           f"two bodies of tetrahedra, surfaces {name}: exit {code} (a signal is negative), refused "
           f"with the master surface's message")
     if code != 1:
+        print(log[-1500:])
+
+# cells whose Jacobian is not positive at every vertex
+QUADS_WITH_A_BOW_TIE = """$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+6
+1 0 0 0
+2 1 0 0
+3 2 0 0
+4 0 1 0
+5 1 1 0
+6 2 1 0
+$EndNodes
+$Elements
+2
+1 3 2 1 1 1 2 5 4
+2 3 2 1 1 2 3 5 6
+$EndElements
+"""
+for name, scene, mesh, expected in (
+        ("bow-tie quadrilateral", gmsh_scene, QUADS_WITH_A_BOW_TIE,
+         "the cell of the mesh at (1.5 0.5) is self-intersecting (a bow-tie)"),):
+    directory = os.path.join(workdir, name.replace(" ", "_"))
+    os.makedirs(directory, exist_ok=True)
+    with open(os.path.join(directory, "cells.msh"), "w") as f:
+        f.write(mesh)
+    text = re.sub(r"set Mesh file\s*=.*", "set Mesh file = cells.msh", scene)
+    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT, directory, expect_success=False)
+    check(code == 1 and expected in log, f"{name}: exit {code}, refused naming the cell")
+    if code != 1 or expected not in log:
         print(log[-1500:])
 check.finish()

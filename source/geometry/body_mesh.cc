@@ -6,6 +6,7 @@
 #include <stabilized_lagrangian/geometry/body_mesh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <set>
@@ -39,6 +40,66 @@ namespace StabilizedLagrangian
       for (const auto id : ids)
         result += (result.empty() ? "" : ", ") + std::to_string(id);
       return result;
+    }
+
+    /**
+     * Refuse a coarse cell that is inverted (its vertices ordered the other
+     * way round: a negative Jacobian), self-intersecting (a bow-tie, whose
+     * Jacobian changes sign over it) or degenerate (no volume): such a cell
+     * gives a wrong or singular system, found only as a Newton iteration
+     * that does not converge. The Jacobian of a hypercube's multilinear map
+     * is checked at the 2^dim Gauss points (a corner's may vanish or turn
+     * negative on a usable cell: an edge collapsed on the axis of a meshed
+     * cylinder); a simplex's is constant, and deal.II maps either orientation.
+     */
+    template <int dim>
+    void
+    check_cell_orientation(const Triangulation<dim> &triangulation)
+    {
+      const QGauss<dim> gauss(2);
+      for (const auto &cell : triangulation.cell_iterators_on_level(0))
+        {
+          const bool   simplex  = cell->reference_cell().is_simplex();
+          const double scale    = std::pow(cell->diameter(), dim);
+          double       smallest = std::numeric_limits<double>::max(), largest = -smallest;
+          for (unsigned int q = 0; q < (simplex ? 1 : gauss.size()); ++q)
+            {
+              // J = Σ_v x_v ⊗ ∇N_v, N_v = Π_d (ξ_d or 1 − ξ_d by bit d of v);
+              // a simplex's edges from its vertex 0
+              Tensor<2, dim> jacobian;
+              if (simplex)
+                for (unsigned int d = 0; d < dim; ++d)
+                  for (unsigned int i = 0; i < dim; ++i)
+                    jacobian[i][d] = cell->vertex(d + 1)[i] - cell->vertex(0)[i];
+              else
+                for (const unsigned int v : cell->vertex_indices())
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      double slope = ((v >> d) & 1) ? 1. : -1.;
+                      for (unsigned int e = 0; e < dim; ++e)
+                        if (e != d)
+                          slope *= ((v >> e) & 1) ? gauss.point(q)[e] : 1. - gauss.point(q)[e];
+                      for (unsigned int i = 0; i < dim; ++i)
+                        jacobian[i][d] += cell->vertex(v)[i] * slope;
+                    }
+              const double det =
+                  (simplex ? std::abs(determinant(jacobian)) : determinant(jacobian)) / scale;
+              smallest = std::min(smallest, det);
+              largest  = std::max(largest, det);
+            }
+          if (smallest > 1e-10)
+            continue;
+          std::ostringstream message;
+          message << "Geometry: the cell of the mesh at (" << cell->center() << ") is "
+                  << (largest < 0.    ? "inverted: its vertices are ordered the other way round (a "
+                                        "negative Jacobian; Gmsh reports such cells as 'jac. < 0')"
+                      : smallest < 0. ? "self-intersecting (a bow-tie): its Jacobian changes sign "
+                                        "over it"
+                                      : "degenerate: it has no volume")
+                  << ". The run would solve a wrong or singular system. Fix the mesh (in Gmsh: "
+                     "the orientation of the surface or volume, Mesh.Optimize) and run again.";
+          throw InputError(message.str());
+        }
     }
   } // namespace
 
@@ -79,6 +140,7 @@ namespace StabilizedLagrangian
     else
       {
         geometry.create_mesh(*storage);
+        check_cell_orientation(*storage);
         share_ghost_boundary_ids();
       }
   }
@@ -89,6 +151,7 @@ namespace StabilizedLagrangian
   {
     Triangulation<dim> serial;
     geometry.create_mesh(serial);
+    check_cell_orientation(serial);
     serial.refine_global(extra_refinements);
     if (serial.has_hanging_nodes() && displacement_degree > 1 &&
         Utilities::MPI::n_mpi_processes(communicator) > 1)
