@@ -199,7 +199,7 @@ for name, surfaces in (("by name", ("cyl_contact", "blk_contact", "blk_bottom", 
     if code != 1:
         print(log[-1500:])
 
-# cells whose Jacobian is not positive at every vertex
+# a cell whose Jacobian changes sign (a bow-tie: the second quadrilateral's last two nodes swapped)
 QUADS_WITH_A_BOW_TIE = """$MeshFormat
 2.2 0 8
 $EndMeshFormat
