@@ -397,8 +397,14 @@ namespace StabilizedLagrangian
     const ScaledResidual scaled = problem.scaled_residual();
     std::ostringstream   line;
     line << std::setprecision(6) << "    Newton " << iteration << ": residual "
-         << problem.residual_norm() << ' ' << problem.force_unit << "; scaled: force "
-         << scaled.force << ", gap " << scaled.gap << ", slip " << scaled.slip << "\n";
+         << problem.residual_norm() << ' ' << problem.force_unit << "; scaled: force ";
+    // a body at rest has no force to measure the residual against yet: the
+    // criterion counts it as not converged (ScaledResidual), the log says why
+    if (std::isfinite(scaled.force))
+      line << scaled.force;
+    else
+      line << "(no scale: the body carries no force yet)";
+    line << ", gap " << scaled.gap << ", slip " << scaled.slip << "\n";
     problem.pcout << line.str();
   }
 
