@@ -160,7 +160,8 @@ namespace StabilizedLagrangian
     problem.step_start     = problem.ghosted_solution;
     stats.wall_time        = step_clock.wall_time();
     problem.statistics.write(stats);
-    RunLog<dim>(problem.run_log_view()).print_step_line(stats, path.wall_clock.wall_time());
+    RunLog<dim>(problem.run_log_view())
+        .print_step_line(stats, path.wall_clock.wall_time(), path.start_time);
     if (stats.friction_law_violations > 0 && ++path.friction_law_warnings <= 3)
       problem.pcout
           << "WARNING: load step " << stats.step << ": " << stats.friction_law_report

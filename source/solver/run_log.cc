@@ -114,9 +114,14 @@ namespace StabilizedLagrangian
 
   template <int dim>
   void
-  RunLog<dim>::print_step_line(const StepStatistics &s, const double elapsed) const
+  RunLog<dim>::print_step_line(const StepStatistics &s,
+                               const double          elapsed,
+                               const double          start_time) const
   {
-    const double remaining = elapsed / problem.time * (problem.end_time - problem.time);
+    // at the pace of this process's load path (a resumed run began at the
+    // checkpoint's time, not at 0)
+    const double remaining =
+        elapsed / (problem.time - start_time) * (problem.end_time - problem.time);
     // formatted apart, so that the log's stream keeps its own precision
     std::ostringstream line;
     line << "step " << std::setw(3) << s.step << "  t = " << std::setw(8) << std::setprecision(6)

@@ -118,10 +118,13 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The line of the converged load step @p stats, @p elapsed seconds
-     * into the load path, with the time it projects for the rest.
+     * into the load path this process began at time @p start_time, with the
+     * time it projects for the rest at that pace.
      */
     void
-    print_step_line(const StepStatistics &stats, const double elapsed) const;
+    print_step_line(const StepStatistics &stats,
+                    const double          elapsed,
+                    const double          start_time) const;
 
     /**
      * @brief The end of a completed load path of @p n_steps steps: the summary
