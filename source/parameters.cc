@@ -467,6 +467,35 @@ namespace StabilizedLagrangian
       Origins entry_origins;
     } // namespace
 
+    namespace
+    {
+      /**
+       * ParameterHandler's message that a value does not match its entry's
+       * pattern, as "'file' line N: Section/.../Entry = value: not allowed,
+       * the entry takes <pattern>", with the entry's whole path; nothing for
+       * other messages, or when the line set no entry scan_entries() found.
+       */
+      std::optional<std::string>
+      entry_not_allowed(const std::string &message, const ExpandedFile &file)
+      {
+        static const std::regex mismatch(
+            "Line <([0-9]+)>[\\s\\S]*The entry value\\s+([\\s\\S]*?)\\s+for the entry "
+            "named\\s+([\\s\\S]*?)\\s+"
+            "does not match the given pattern:\\s+([\\s\\S]*?)\\s*$");
+        std::smatch match;
+        if (!std::regex_search(message, match, mismatch))
+          return std::nullopt;
+        const std::string where = origin_of(file, std::stoul(match[1]));
+        const std::string name  = "/" + match[3].str();
+        for (const auto &[path, origin] : entry_origins)
+          if (!where.empty() && origin == where && ("/" + path).size() >= name.size() &&
+              ("/" + path).compare(path.size() + 1 - name.size(), name.size(), name) == 0)
+            return where + ": " + path + " = " + match[2].str() +
+                   ": not allowed; the entry takes " + match[4].str() + ".";
+        return std::nullopt;
+      }
+    } // namespace
+
     std::string
     located(const std::string &message)
     {
@@ -534,9 +563,10 @@ namespace StabilizedLagrangian
         {
           std::ostringstream message;
           e.print_info(message);
-          throw InputError("Error in the parameter file " +
-                           (is_file ? "'" + text + "'" : std::string("(built-in)")) + ":\n" +
-                           locate(message.str(), content));
+          throw InputError(entry_not_allowed(message.str(), content)
+                               .value_or("Error in the parameter file " +
+                                         (is_file ? "'" + text + "'" : std::string("(built-in)")) +
+                                         ":\n" + locate(message.str(), content)));
         }
       return with_template(sections);
     }

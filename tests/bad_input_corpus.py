@@ -291,6 +291,8 @@ for name, path, value, expect in (
          "Boundary conditions/Dirichlet 1/Boundary id = 12345678901234567890123: a boundary id"),
         ("a 23-digit master boundary id", "Contact/Master boundary ids", "12345678901234567890123",
          "Contact/Master boundary ids = 12345678901234567890123: a boundary id"),
+        ("a 24-digit refinement count", "Geometry/block/Global refinements", "1" * 24,
+         f"Geometry/block/Global refinements = {'1' * 24}: not allowed; the entry takes [Integer range 0...12"),
         ("a 23-digit body", "Material 2/Bodies", "12345678901234567890123",
          "Material 2/Bodies = '12345678901234567890123': the mesh has no body")):
     text = scene(settings=[(path, value)])
