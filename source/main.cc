@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <iostream>
 #include <new>
+#include <stdexcept>
+#include <system_error>
 #include <thread>
 
 namespace
@@ -108,6 +110,9 @@ Output goes to the directory of the entry Output/Output directory.
     return usable;
   }
 
+  /** What the program was doing, for a failure's message ("out of memory while ..."). */
+  std::string phase = "reading the command line";
+
   template <int dim>
   int
   run(const std::string &text,
@@ -129,12 +134,15 @@ Output goes to the directory of the entry Output/Output directory.
     prm.leave_subsection();
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       std::cout << note;
+    phase = "setting up the problem (mesh, finite element spaces, contact surface)";
     ContactProblem<dim> problem(prm, sections);
     if (inf_sup_meshes > 0)
       {
+        phase = "running the inf-sup test";
         problem.run_inf_sup_test(inf_sup_meshes);
         return 0;
       }
+    phase = resume ? "resuming and running the load steps" : "running the load steps";
     if (problem.run(resume))
       return 0;
     return problem.stopped_at_wall_time_limit() ? 3 : 2;
@@ -160,6 +168,24 @@ Output goes to the directory of the entry Output/Output directory.
     return true;
   }
 
+  /**
+   * The argument @p text of the option @p name (`--threads N`): an integer
+   * from @p min to @p max, else InputError saying so.
+   */
+  unsigned int
+  option_value(const std::string &name,
+               const std::string &text,
+               const unsigned int min,
+               const unsigned int max)
+  {
+    const auto value = Parameters::decimal_integer(text, max);
+    if (!value || *value < min)
+      throw InputError(name + " N: N must be an integer from " + std::to_string(min) + " to " +
+                       std::to_string(max) + ", got " +
+                       (text.empty() ? std::string("an empty argument") : "'" + text + "'") + ".");
+    return static_cast<unsigned int>(*value);
+  }
+
   /** --threads N, --resume, --inf-sup [N] and the parameter file. */
   CommandLine
   parse_command_line(const std::vector<std::string> &args)
@@ -170,12 +196,9 @@ Output goes to the directory of the entry Output/Output directory.
     const auto option = std::find(files.begin(), files.end(), "--threads");
     if (option != files.end())
       {
-        if (option + 1 == files.end() ||
-            (option + 1)->find_first_not_of("0123456789") != std::string::npos ||
-            (option + 1)->size() > 3 || std::stoi(*(option + 1)) < 1 ||
-            std::stoi(*(option + 1)) > 256)
-          throw InputError("--threads N: N must be an integer from 1 to 256.");
-        command.threads = *(option + 1);
+        if (option + 1 == files.end())
+          throw InputError("--threads N: N must be an integer from 1 to 256, got nothing.");
+        command.threads = std::to_string(option_value("--threads", *(option + 1), 1, 256));
         files.erase(option, option + 2);
       }
     command.resume = take_flag(files, "--resume");
@@ -185,11 +208,7 @@ Output goes to the directory of the entry Output/Output directory.
         command.inf_sup_meshes = 4;
         if (files.size() == 2)
           {
-            if (files[0].find_first_not_of("0123456789") != std::string::npos ||
-                std::stoi(files[0]) < 1 || std::stoi(files[0]) > 10)
-              throw InputError("--inf-sup N: N must be an integer from 1 to 10, got '" + files[0] +
-                               "'.");
-            command.inf_sup_meshes = std::stoi(files[0]);
+            command.inf_sup_meshes = option_value("--inf-sup", files[0], 1, 10);
             files.erase(files.begin());
           }
         if (files.size() != 1)
@@ -206,6 +225,23 @@ Output goes to the directory of the entry Output/Output directory.
     return command;
   }
 
+  /** What the standard exception @p e says happened, in words. */
+  std::string
+  failure_in_words(const std::exception &e)
+  {
+    if (dynamic_cast<const std::out_of_range *>(&e) != nullptr)
+      return "a number or an index out of its range";
+    if (dynamic_cast<const std::invalid_argument *>(&e) != nullptr)
+      return "a value that could not be converted";
+    if (dynamic_cast<const std::ios_base::failure *>(&e) != nullptr)
+      return "a file that could not be read or written";
+    if (dynamic_cast<const std::system_error *>(&e) != nullptr)
+      return "a failed call to the operating system";
+    if (dynamic_cast<const std::length_error *>(&e) != nullptr)
+      return "a container grown beyond its largest size";
+    return "an unexpected failure";
+  }
+
   /** --print-parameters [2|3]: every entry with its documentation and default. */
   void
   print_parameters(const std::vector<std::string> &args, const bool root)
@@ -214,7 +250,7 @@ Output goes to the directory of the entry Output/Output directory.
       throw InputError("--print-parameters takes the dimension, 2 or 3 (default 2), "
                        "and nothing else.\n" +
                        std::string(usage));
-    const unsigned int dim = args.size() > 1 ? std::stoi(args[1]) : 2;
+    const unsigned int dim = args.size() > 1 && args[1] == "3" ? 3 : 2;
     ParameterHandler   prm;
     if (dim == 3)
       Parameters::declare_all<3>(prm);
@@ -250,7 +286,8 @@ main(int argc, char *argv[])
           print_parameters(args, root);
           return 0;
         }
-      const CommandLine  command = parse_command_line(args);
+      const CommandLine command  = parse_command_line(args);
+      phase                      = "reading the parameter file";
       const bool         is_file = !command.files.empty();
       const std::string  text    = is_file ? command.files[0] : std::string(default_scene_prm);
       const unsigned int dim     = Parameters::read_dimension(text, is_file);
@@ -261,14 +298,14 @@ main(int argc, char *argv[])
   catch (const InputError &e)
     {
       if (root)
-        std::cerr << "Input error: " << e.what() << std::endl;
+        std::cerr << "Input error: " << Parameters::located(e.what()) << std::endl;
       return 1;
     }
   catch (const std::bad_alloc &)
     {
       // (on the rank that ran out, which need not be the first)
       struct rlimit limit;
-      std::cerr << "Error: out of memory"
+      std::cerr << "Error: out of memory while " << phase
                 << (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1
                         ? " on rank " +
                               std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
@@ -285,7 +322,7 @@ main(int argc, char *argv[])
     {
       if (root)
         {
-          std::cerr << "Error: ";
+          std::cerr << "Error while " << phase << ": ";
           e.print_info(std::cerr);
           std::cerr << std::endl;
         }
@@ -294,7 +331,11 @@ main(int argc, char *argv[])
   catch (const std::exception &e)
     {
       if (root)
-        std::cerr << "Error: " << e.what() << std::endl;
+        std::cerr << "Error: " << failure_in_words(e) << " while " << phase
+                  << " (the library's message: '" << e.what()
+                  << "'). The input was accepted, so this is a failure of the program: please "
+                     "report it with the parameter file."
+                  << std::endl;
       return 1;
     }
 }

@@ -10,9 +10,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <regex>
 #include <map>
@@ -36,60 +39,92 @@ namespace StabilizedLagrangian
       }
     } // namespace
 
+    namespace
+    {
+      /**
+       * Call @p visit(line, statement) for each statement of the parameter
+       * text @p text, with the number of the line it starts on, in
+       * ParameterHandler's syntax: '#' starts a comment, a trailing backslash
+       * continues a line.
+       */
+      template <typename Visit>
+      void
+      for_each_statement(const std::string &text, const Visit &visit)
+      {
+        std::istringstream lines(text);
+        std::string        line, joined;
+        bool               continued = false;
+        unsigned int       start     = 1;
+        for (unsigned int number = 1; std::getline(lines, line); ++number)
+          {
+            if (!continued)
+              start = number;
+            line = Utilities::trim(line.substr(0, line.find('#')));
+            if (!line.empty() && line.back() == '\\')
+              {
+                joined += line.substr(0, line.size() - 1) + " ";
+                continued = true;
+                continue;
+              }
+            visit(start, Utilities::trim(joined + line));
+            joined.clear();
+            continued = false;
+          }
+      }
+
+      /** The rest of @p statement after @p keyword and white space, or nothing. */
+      std::optional<std::string>
+      after_keyword(const std::string &statement, const std::string &keyword)
+      {
+        if (statement.rfind(keyword, 0) != 0 || statement.size() <= keyword.size() ||
+            !std::isspace(static_cast<unsigned char>(statement[keyword.size()])))
+          return std::nullopt;
+        return Utilities::trim(statement.substr(keyword.size()));
+      }
+    } // namespace
+
     ConditionSections
     condition_sections(const std::string &text)
     {
       ConditionSections        sections;
       std::vector<std::string> path;
-      std::istringstream       lines(text);
-      std::string              line, joined;
-      while (std::getline(lines, line))
-        {
-          // ParameterHandler's syntax: '#' starts a comment, a trailing backslash continues a line
-          line = Utilities::trim(line.substr(0, line.find('#')));
-          if (!line.empty() && line.back() == '\\')
-            {
-              joined += line.substr(0, line.size() - 1) + " ";
-              continue;
-            }
-          line = Utilities::trim(joined + line);
-          joined.clear();
-          if (line == "end")
-            {
-              if (!path.empty())
-                path.pop_back();
-              continue;
-            }
-          if (line.rfind("subsection", 0) != 0 || line.size() < 11 ||
-              !std::isspace(static_cast<unsigned char>(line[10])))
-            continue;
-          const std::string name = Utilities::trim(line.substr(10));
-          if (path.size() == 1 && path[0] == "Boundary conditions")
-            {
-              std::vector<std::string> *list = nullptr;
-              std::string               label;
-              for (const auto &kind : StabilizedLagrangian::BoundaryConditions::kinds())
-                if (name.rfind(kind + " ", 0) == 0)
-                  {
-                    list  = &sections.conditions[kind];
-                    label = Utilities::trim(name.substr(kind.size() + 1));
-                  }
-              if (list == nullptr || label.empty())
-                throw InputError(
-                    "Boundary conditions/" + name + ": a boundary condition is a subsection " +
-                    condition_kinds_described() + ", with any name, e.g. 'Dirichlet top'.");
-              if (std::find(list->begin(), list->end(), label) == list->end())
-                list->push_back(label);
-            }
-          if (path.size() == 1 && path[0] == "Contact" && name.rfind("Zone ", 0) == 0)
-            {
-              const std::string zone = Utilities::trim(name.substr(5));
-              if (std::find(sections.zones.begin(), sections.zones.end(), zone) ==
-                  sections.zones.end())
-                sections.zones.push_back(zone);
-            }
-          path.push_back(name);
-        }
+      for_each_statement(text, [&](unsigned int, const std::string &line) {
+        if (line == "end")
+          {
+            if (!path.empty())
+              path.pop_back();
+            return;
+          }
+        const auto subsection = after_keyword(line, "subsection");
+        if (!subsection)
+          return;
+        const std::string name = *subsection;
+        if (path.size() == 1 && path[0] == "Boundary conditions")
+          {
+            std::vector<std::string> *list = nullptr;
+            std::string               label;
+            for (const auto &kind : StabilizedLagrangian::BoundaryConditions::kinds())
+              if (name.rfind(kind + " ", 0) == 0)
+                {
+                  list  = &sections.conditions[kind];
+                  label = Utilities::trim(name.substr(kind.size() + 1));
+                }
+            if (list == nullptr || label.empty())
+              throw InputError(
+                  "Boundary conditions/" + name + ": a boundary condition is a subsection " +
+                  condition_kinds_described() + ", with any name, e.g. 'Dirichlet top'.");
+            if (std::find(list->begin(), list->end(), label) == list->end())
+              list->push_back(label);
+          }
+        if (path.size() == 1 && path[0] == "Contact" && name.rfind("Zone ", 0) == 0)
+          {
+            const std::string zone = Utilities::trim(name.substr(5));
+            if (std::find(sections.zones.begin(), sections.zones.end(), zone) ==
+                sections.zones.end())
+              sections.zones.push_back(zone);
+          }
+        path.push_back(name);
+      });
       return sections;
     }
 
@@ -238,9 +273,12 @@ namespace StabilizedLagrangian
         std::stringstream content;
         content << file.rdbuf();
         const std::string text = content.str();
-        if (text.find('\0') != std::string::npos)
-          throw InputError(what + " '" + filename +
-                           "' contains NUL bytes: a binary file, not a parameter file.");
+        if (const auto nul = text.find('\0'); nul != std::string::npos)
+          throw InputError("'" + filename + "' line " +
+                           std::to_string(std::count(text.begin(), text.begin() + nul, '\n') + 1) +
+                           ": " + what +
+                           " contains NUL bytes (the first here): a binary file, not a parameter "
+                           "file; a parameter file holds text only.");
         return text;
       }
 
@@ -336,7 +374,159 @@ namespace StabilizedLagrangian
         return match.prefix().str() + "'" + name + "' line " + std::to_string(number) +
                match.suffix().str();
       }
+
+      /** Where an entry or subsection is set in the parameter file: its file and line. */
+      using Origins = std::map<std::string, std::string>;
+
+      /** "'file' line N" of the expanded line @p line of @p file; empty for a built-in text. */
+      std::string
+      origin_of(const ExpandedFile &file, const unsigned int line)
+      {
+        if (line < 1 || line > file.origin.size())
+          return "";
+        const auto &[name, number] = file.origin[line - 1];
+        return "'" + name + "' line " + std::to_string(number);
+      }
+
+      /**
+       * A value of @p entry (a `Section/.../Entry` path), all of whose
+       * numbers must be doubles: a number whose magnitude is beyond the
+       * largest double or below the smallest normal one (1e400, 1e-320;
+       * ParameterHandler lets the latter through and then "cannot convert"
+       * it) is refused with the entry, its place @p where and the range allowed.
+       */
+      void
+      check_number_range(const std::string &entry,
+                         const std::string &value,
+                         const std::string &where)
+      {
+        static const std::regex number(R"([-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?)");
+        std::istringstream      items(std::regex_replace(value, std::regex("[,;:=]"), " "));
+        for (std::string item; items >> item;)
+          {
+            if (!std::regex_match(item, number))
+              continue;
+            errno               = 0;
+            const double parsed = std::strtod(item.c_str(), nullptr);
+            if (errno != ERANGE)
+              continue;
+            std::ostringstream message;
+            message << (where.empty() ? "" : where + ": ") << entry << " = " << value << ": "
+                    << item << " is "
+                    << (std::abs(parsed) > 1. ? "larger in magnitude than the largest double, "
+                                              : "smaller in magnitude than the smallest normal "
+                                                "double, ")
+                    << (std::abs(parsed) > 1. ? std::numeric_limits<double>::max()
+                                              : std::numeric_limits<double>::min())
+                    << ". Write 0 or a number of magnitude between "
+                    << std::numeric_limits<double>::min() << " and "
+                    << std::numeric_limits<double>::max() << ".";
+            throw InputError(message.str());
+          }
+      }
+
+      /**
+       * The place of each entry and subsection @p file sets (an entry's last
+       * `set`, a subsection's first line), by its path; the numbers of every
+       * entry but a function's expression (muparser's own syntax) checked by
+       * check_number_range().
+       */
+      Origins
+      scan_entries(const ExpandedFile &file)
+      {
+        Origins                  origins;
+        std::vector<std::string> path;
+        const auto               joined = [&path](const std::string &name) {
+          std::string result;
+          for (const auto &section : path)
+            result += section + "/";
+          return result + name;
+        };
+        for_each_statement(file.text, [&](const unsigned int line, const std::string &statement) {
+          if (statement == "end" && !path.empty())
+            path.pop_back();
+          else if (const auto subsection = after_keyword(statement, "subsection"))
+            {
+              origins.emplace(joined(*subsection), origin_of(file, line));
+              path.push_back(*subsection);
+            }
+          else if (const auto set = after_keyword(statement, "set");
+                   set && set->find('=') != std::string::npos)
+            {
+              const std::string name  = Utilities::trim(set->substr(0, set->find('=')));
+              const std::string value = Utilities::trim(set->substr(set->find('=') + 1));
+              origins[joined(name)]   = origin_of(file, line);
+              if (name != "Function expression")
+                check_number_range(joined(name), value, origin_of(file, line));
+            }
+        });
+        return origins;
+      }
+
+      /** The places of the entries of the parameter file parsed last (scan_entries()). */
+      Origins entry_origins;
     } // namespace
+
+    namespace
+    {
+      /**
+       * ParameterHandler's message that a value does not match its entry's
+       * pattern, as "'file' line N: Section/.../Entry = value: not allowed,
+       * the entry takes <pattern>", with the entry's whole path; nothing for
+       * other messages, or when the line set no entry scan_entries() found.
+       */
+      std::optional<std::string>
+      entry_not_allowed(const std::string &message, const ExpandedFile &file)
+      {
+        static const std::regex mismatch(
+            "Line <([0-9]+)>[\\s\\S]*The entry value\\s+([\\s\\S]*?)\\s+for the entry "
+            "named\\s+([\\s\\S]*?)\\s+"
+            "does not match the given pattern:\\s+([\\s\\S]*?)\\s*$");
+        std::smatch match;
+        if (!std::regex_search(message, match, mismatch))
+          return std::nullopt;
+        const std::string where = origin_of(file, std::stoul(match[1]));
+        const std::string name  = "/" + match[3].str();
+        for (const auto &[path, origin] : entry_origins)
+          if (!where.empty() && origin == where && ("/" + path).size() >= name.size() &&
+              ("/" + path).compare(path.size() + 1 - name.size(), name.size(), name) == 0)
+            return where + ": " + path + " = " + match[2].str() +
+                   ": not allowed; the entry takes " + match[4].str() + ".";
+        return std::nullopt;
+      }
+    } // namespace
+
+    std::string
+    located(const std::string &message)
+    {
+      std::string origin;
+      std::size_t longest = 0;
+      for (const auto &[path, where] : entry_origins)
+        if (path.size() > longest && message.rfind(path, 0) == 0 &&
+            (message.size() == path.size() ||
+             std::string(" :=").find(message[path.size()]) != std::string::npos))
+          {
+            longest = path.size();
+            origin  = where;
+          }
+      return origin.empty() ? message : origin + ": " + message;
+    }
+
+    std::optional<unsigned long long>
+    decimal_integer(const std::string &text, const unsigned long long max)
+    {
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+      unsigned long long value = 0;
+      for (const char digit : text)
+        {
+          const auto next = static_cast<unsigned long long>(digit - '0');
+          if (next > max || value > (max - next) / 10)
+            return std::nullopt;
+          value = 10 * value + next;
+        }
+      return value;
+    }
 
     namespace
     {
@@ -360,7 +550,8 @@ namespace StabilizedLagrangian
         parameter_file_directory = std::filesystem::path(text).parent_path().string();
       if (parameter_file_directory.empty())
         parameter_file_directory = ".";
-      const ExpandedFile      content  = is_file ? read_file(text) : ExpandedFile{text, {}};
+      const ExpandedFile content       = is_file ? read_file(text) : ExpandedFile{text, {}};
+      entry_origins                    = scan_entries(content);
       const ConditionSections sections = condition_sections(content.text);
       StabilizedLagrangian::BoundaryConditions::declare_parameters<dim>(prm, sections);
       declare_contact_zones(prm, sections.zones);
@@ -372,9 +563,10 @@ namespace StabilizedLagrangian
         {
           std::ostringstream message;
           e.print_info(message);
-          throw InputError("Error in the parameter file " +
-                           (is_file ? "'" + text + "'" : std::string("(built-in)")) + ":\n" +
-                           locate(message.str(), content));
+          throw InputError(entry_not_allowed(message.str(), content)
+                               .value_or("Error in the parameter file " +
+                                         (is_file ? "'" + text + "'" : std::string("(built-in)")) +
+                                         ":\n" + locate(message.str(), content)));
         }
       return with_template(sections);
     }

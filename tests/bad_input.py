@@ -122,9 +122,20 @@ for arguments, expected in ((["--print-parameters", "7"], "2 or 3"),
                             (["--threads", "0", "a.prm"], "--threads N"),
                             (["--threads"], "--threads N"),
                             (["--resume"], "--resume needs the parameter file"),
-                            (["--inf-sup", "x", "a.prm"], "--inf-sup N")):
+                            (["--inf-sup", "x", "a.prm"], "--inf-sup N"),
+                            # empty, negative, non-numeric and overflowing numbers: the option
+                            # and its range named, no raw "stoi"
+                            (["--threads", "", "a.prm"], "--threads N: N must be an integer from 1 to 256"),
+                            (["--threads", "abc", "a.prm"], "--threads N: N must be an integer from 1 to 256"),
+                            (["--threads", "-1", "a.prm"], "--threads N: N must be an integer from 1 to 256"),
+                            (["--threads", "9" * 25, "a.prm"], "--threads N: N must be an integer from 1 to 256"),
+                            (["--inf-sup", "", "a.prm"], "--inf-sup N: N must be an integer from 1 to 10"),
+                            (["--inf-sup", "-1", "a.prm"], "--inf-sup N: N must be an integer from 1 to 10"),
+                            (["--inf-sup", "9" * 25, "a.prm"], "--inf-sup N: N must be an integer from 1 to 10"),
+                            (["--inf-sup", "0", "a.prm"], "--inf-sup N: N must be an integer from 1 to 10"),
+                            (["--print-parameters", ""], "2 or 3")):
     result = subprocess.run([executable] + arguments, capture_output=True, text=True)
-    check(result.returncode == 1 and expected in result.stderr,
+    check(result.returncode == 1 and expected in result.stderr and "stoi" not in result.stderr,
           f"command line {' '.join(arguments)}: exit code {result.returncode}, "
           f"message names '{expected}'")
 
@@ -150,6 +161,22 @@ else:
     check(code == 0 and "BLAS/OpenMP thread(s) per rank are used" in log,
           f"--threads 256 under ulimit -v 8000000: exit code {code} (None: still running after 120 s), "
           f"the threads capped with a note: {log.strip().splitlines()[0][:150] if log.strip() else ''}")
+
+# a run out of memory (a 2D block refined 11 times under an address-space limit of 3 GB) says
+# so in words and what the program was doing, not std::bad_alloc
+out = f"{workdir}/out_of_memory"
+os.makedirs(out, exist_ok=True)
+with open(f"{out}/input.prm", "w") as f:
+    f.write("subsection Geometry\n  set Model = block\n  subsection block\n"
+            "    set Global refinements = 11\n  end\nend\n" + sltest.QUIET_OUTPUT)
+if sltest.address_sanitized(executable):
+    print("SKIP out of memory under ulimit -v 3000000: AddressSanitizer cannot start under it")
+else:
+    result = subprocess.run(["bash", "-c", f"ulimit -v 3000000; exec {executable} input.prm"],
+                            cwd=out, capture_output=True, text=True, timeout=300)
+    check(result.returncode == 1 and "Error: out of memory while running the load steps" in result.stderr
+          and "bad_alloc" not in result.stderr,
+          f"out of memory: exit code {result.returncode}, {result.stderr.strip()[:150]}")
 
 # no NaN in any CSV written (the .vtu files are compressed; the ParaView test
 # reads them and checks their arrays for NaN)

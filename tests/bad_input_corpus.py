@@ -226,7 +226,13 @@ for name, files, special, prm, expect in (
         ("input is /dev/null", {}, None, "/dev/null", "not a regular file"),
         ("input is empty", {"input.prm": ""}, None, "input.prm", "sets no parameter"),
         ("input is binary", {}, None, "random.prm", "NUL bytes"),
-        ("input is missing", {}, None, "missing.prm", "does not exist")):
+        ("input is missing", {}, None, "missing.prm", "does not exist"),
+        # NUL bytes: the file and the line of the first
+        ("a NUL byte on line 3", {"input.prm": "set Dimension = 2\n# a comment\nset Dim\0ension = 2\n"},
+         None, "input.prm", "'input.prm' line 3: The parameter file contains NUL bytes"),
+        ("a NUL byte in an included file",
+         {"input.prm": "include b.prm\n", "b.prm": "set Dimension = 2\n\0\n"}, None, "input.prm",
+         "'b.prm' line 2: The included file contains NUL bytes")):
     prepare, expect, prm = files_case(files, prm, special, expect)
     cases.append((name, prepare, expect, prm))
 
@@ -266,6 +272,60 @@ for name, path, value, expect in (
         ("unknown material", "Material/Model", "steel", "Model"),
         ("unknown pair", "Contact/Finite element pair", "Q7/P9", "Finite element pair")):
     text_case(name, scene(settings=[(path, value)]), expect)
+# numbers no double holds (denormal, beyond the largest) and integers no id holds: the entry, the
+# file and line and the range allowed, no raw "Can't convert", "stoul" or "stoi"
+for name, path, value, expect in (
+        ("end time = 1e-320", "Load stepping/End time", "1e-320",
+         "Load stepping/End time = 1e-320: 1e-320 is smaller in magnitude than the smallest normal double"),
+        ("E = 1e-320", "Material/linear elastic/Young's modulus", "1e-320",
+         "Material/linear elastic/Young's modulus = 1e-320: 1e-320 is smaller"),
+        ("mu = 1e400", "Contact/Friction law/Coulomb/Friction coefficient", "1e400",
+         "Contact/Friction law/Coulomb/Friction coefficient = 1e400: 1e400 is larger in magnitude than the largest double"),
+        ("obstacle point = 1e-320", "Obstacle/plane/Point", "1e-320, 0", "Obstacle/plane/Point = 1e-320, 0"),
+        ("a constant of 1e-320", "Boundary conditions/Dirichlet 1/Displacement/Function constants",
+         "d=1e-320", "Boundary conditions/Dirichlet 1/Displacement/Function constants = d=1e-320: 1e-320 is smaller"),
+        ("a 23-digit contact boundary id", "Contact/Contact boundary ids", "12345678901234567890123",
+         "Contact/Contact boundary ids = 12345678901234567890123: a boundary id is an integer from 0 to"),
+        ("a 23-digit Dirichlet boundary id", "Boundary conditions/Dirichlet 1/Boundary id",
+         "12345678901234567890123",
+         "Boundary conditions/Dirichlet 1/Boundary id = 12345678901234567890123: a boundary id"),
+        ("a 23-digit master boundary id", "Contact/Master boundary ids", "12345678901234567890123",
+         "Contact/Master boundary ids = 12345678901234567890123: a boundary id"),
+        ("a 24-digit refinement count", "Geometry/block/Global refinements", "1" * 24,
+         f"Geometry/block/Global refinements = {'1' * 24}: not allowed; the entry takes [Integer range 0...12"),
+        ("a 23-digit body", "Material 2/Bodies", "12345678901234567890123",
+         "Material 2/Bodies = '12345678901234567890123': the mesh has no body")):
+    text = scene(settings=[(path, value)])
+    line = text.splitlines().index(f"set {path.split('/')[-1]} = {value}") + 1
+    text_case(name, text, f"'input.prm' line {line}: {expect}")
+# a range error names the file and the line of its entry
+text = scene(settings=[("Load stepping/End time", "-1")])
+text_case("end time = -1 with its line", text,
+          f"'input.prm' line {text.splitlines().index('set End time = -1') + 1}: Load stepping/End time")
+# the entry of a function at fault: its constants, its variable names or its expression
+DISPLACEMENT = "Boundary conditions/Dirichlet 1/Displacement"
+for name, entry, value, expect in (
+        ("a constant that is no number", "Function constants", "d=abc", "Function constants = 'd=abc'"),
+        ("a constant without a name", "Function constants", "=0.01", "Function constants = '=0.01'"),
+        ("a variable named twice", "Variable names", "x,x,t", "Variable names = 'x,x,t': 'x' is given twice"),
+        ("a variable that is no name", "Variable names", "x,2y,t", "Variable names = 'x,2y,t': '2y' is not a name"),
+        ("three components", "Function expression", "0; -d*t; 1",
+         "Function expression = '0; -d*t; 1': 2 component(s) separated by ';' are needed, got 3"),
+        ("an unclosed parenthesis", "Function expression", "0; -d*(t",
+         "Function expression = '0; -d*(t': the expression could not be parsed")):
+    text_case(name, scene(settings=[(f"{DISPLACEMENT}/{entry}", value)]), f"{DISPLACEMENT}/{expect}")
+# the contact zone of a ball: in (0, 2 R], checked when it is read (it was reported as the contact
+# surface's missing boundary id)
+for name, value in (("zero contact zone radius", "0"), ("negative contact zone radius", "-1"),
+                    ("contact zone radius 1e308", "1e308")):
+    text_case(name, scene(settings=[("Geometry/Model", "half ball"),
+                                    ("Geometry/half ball/Contact zone radius", value)]),
+              f"Geometry/half ball/Contact zone radius = {value}: the distance (mm) from the contact "
+              "point within which the curved faces form the contact surface must be > 0 and at most "
+              "twice the radius")
+text_case("two balls' contact zone radius 0", scene(settings=[("Geometry/Model", "two balls"),
+                                                              ("Geometry/two balls/Contact zone radius", "0")]),
+          "Geometry/two balls/Contact zone radius = 0: the distance")
 # a plug-in chosen in more than one place names the subsection the value was written in
 ZONE_LEFT = [("Contact/Zone left/Boundary ids", "2"), ("Contact/Complementarity", "pointwise")]
 for name, settings, expect in (

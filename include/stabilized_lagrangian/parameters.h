@@ -356,6 +356,21 @@ namespace StabilizedLagrangian
     parse(ParameterHandler &prm, const std::string &text, const bool is_file);
 
     /**
+     * @brief @p message with the file and line (`'file' line N: `) of the
+     * entry or subsection of the parameter file parsed last that it begins
+     * with (`Load stepping/End time must be > 0, ...`), as is when it names none.
+     */
+    std::string
+    located(const std::string &message);
+
+    /**
+     * @brief The value of @p text if it is a decimal integer (digits only, no
+     * sign) of at most @p max, else nothing: no overflow for any length.
+     */
+    std::optional<unsigned long long>
+    decimal_integer(const std::string &text, const unsigned long long max);
+
+    /**
      * @brief A file named in the parameters: as given if it exists (or is
      * absolute), else relative to the directory of the parameter file parsed last.
      */

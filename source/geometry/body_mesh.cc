@@ -4,6 +4,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <stabilized_lagrangian/geometry/body_mesh.h>
+#include <stabilized_lagrangian/parameters.h>
 
 #include <algorithm>
 #include <cmath>
@@ -302,8 +303,9 @@ namespace StabilizedLagrangian
           const auto         named = body_names.find(body);
           if (named != body_names.end())
             id = named->second;
-          else if (!body.empty() && body.find_first_not_of("0123456789") == std::string::npos)
-            id = static_cast<types::material_id>(std::stoul(body));
+          else if (const auto number = StabilizedLagrangian::Parameters::decimal_integer(
+                       body, numbers::invalid_material_id - 1))
+            id = static_cast<types::material_id>(*number);
           if (id == numbers::invalid_material_id || mesh_bodies.count(id) == 0)
             {
               std::string known;

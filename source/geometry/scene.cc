@@ -158,6 +158,25 @@ namespace StabilizedLagrangian
                           "the candidate contact surface. When it is larger than the "
                           "local refinement radius, the contact mesh has hanging nodes.");
       }
+
+      /**
+       * `Contact zone radius` of the ball @p section of radius @p radius:
+       * in (0, 2 R], 2 R taking the whole curved side (a radius of no face
+       * was reported as the contact surface's missing boundary id).
+       */
+      double
+      contact_zone_radius(const ParameterHandler &prm, const std::string &section, double radius)
+      {
+        const double zone = prm.get_double("Contact zone radius");
+        // (a radius <= 0 is refused with its own entry)
+        if (radius > 0. && !(zone > 0. && zone <= 2. * radius))
+          throw InputError(section + "/Contact zone radius = " + prm.get("Contact zone radius") +
+                           ": the distance (mm) from the contact point within which the curved "
+                           "faces form the contact surface must be > 0 and at most twice the "
+                           "radius, " +
+                           Utilities::to_string(2. * radius) + " (the whole curved side).");
+        return zone;
+      }
     } // namespace
 
     /**
@@ -310,7 +329,7 @@ namespace StabilizedLagrangian
           , global_refinements(prm.get_integer("Global refinements"))
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
-          , contact_radius(prm.get_double("Contact zone radius"))
+          , contact_radius(contact_zone_radius(prm, section, radius))
           , symmetric(prm.get_bool("Symmetry planes"))
           , simplex(
                 read_cell_shape<dim>(prm, section, local_refinements > 0 && refinement_radius > 0.))
@@ -450,7 +469,7 @@ namespace StabilizedLagrangian
           , global_refinements(prm.get_integer("Global refinements"))
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
-          , contact_radius(prm.get_double("Contact zone radius"))
+          , contact_radius(contact_zone_radius(prm, section, radius))
       {
         if (!(radius > 0.))
           throw InputError(section + "/Radius must be > 0.");

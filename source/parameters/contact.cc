@@ -18,11 +18,12 @@ namespace StabilizedLagrangian
         throw InputError(name + ": an empty boundary.");
       if (entry.find_first_not_of("0123456789") != std::string::npos)
         return std::nullopt;
-      const unsigned long id = std::stoul(entry);
-      if (id >= numbers::internal_face_boundary_id)
-        throw InputError(name + " = " + entry + ": a boundary id must be below " +
-                         std::to_string(numbers::internal_face_boundary_id) + ".");
-      return static_cast<types::boundary_id>(id);
+      const auto id = decimal_integer(entry, numbers::internal_face_boundary_id - 1);
+      if (!id)
+        throw InputError(name + " = " + entry + ": a boundary id is an integer from 0 to " +
+                         std::to_string(numbers::internal_face_boundary_id - 1) +
+                         ", or the name of a boundary of the mesh.");
+      return static_cast<types::boundary_id>(*id);
     }
 
     namespace

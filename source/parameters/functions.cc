@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <regex>
 #include <sstream>
 
 /** @file The functions of the time and the coordinates a `.prm` gives (BoundaryFunction). */
@@ -97,6 +99,74 @@ namespace StabilizedLagrangian
       throw InputError(first);
     }
 
+    namespace
+    {
+      /** Whether @p text is a name muparser takes: a letter or _, then letters, digits or _. */
+      bool
+      is_name(const std::string &text)
+      {
+        static const std::regex name("[A-Za-z_][A-Za-z0-9_]*");
+        return std::regex_match(text, name);
+      }
+
+      /**
+       * The entries of the function subsection @p entry that @p prm is in,
+       * checked one by one so that an error names the one at fault:
+       * `Variable names` (dim + 1 distinct names), `Function constants`
+       * ('name=value, ...', each value a finite number, no name a variable's)
+       * and the number of components of `Function expression`.
+       */
+      template <int dim>
+      void
+      check_function_entries(const ParameterHandler &prm,
+                             const std::string      &entry,
+                             const unsigned int      n_components)
+      {
+        const std::string              names     = prm.get("Variable names");
+        const std::vector<std::string> variables = Utilities::split_string_list(names);
+        const std::string              example   = dim == 2 ? "x,y,t" : "x,y,z,t";
+        if (variables.size() != dim + 1)
+          throw InputError(entry + "/Variable names = '" + names + "': a " + std::to_string(dim) +
+                           "D function needs " + std::to_string(dim + 1) +
+                           " variable names, the coordinates then time, e.g. '" + example + "'.");
+        for (const auto &variable : variables)
+          if (!is_name(variable) || std::count(variables.begin(), variables.end(), variable) > 1)
+            throw InputError(entry + "/Variable names = '" + names + "': '" + variable + "' is " +
+                             (is_name(variable) ? "given twice" : "not a name") +
+                             "; the variables are " + std::to_string(dim + 1) +
+                             " distinct names (a letter or _, then letters, digits or _), the "
+                             "coordinates then time, e.g. '" +
+                             example + "'.");
+        const std::string constants = prm.get("Function constants");
+        for (const auto &constant : Utilities::split_string_list(constants))
+          {
+            const std::string constant_name =
+                Utilities::trim(constant.substr(0, constant.find('=')));
+            const std::string value =
+                constant.find('=') == std::string::npos
+                    ? ""
+                    : Utilities::trim(constant.substr(constant.find('=') + 1));
+            char        *end    = nullptr;
+            const double number = std::strtod(value.c_str(), &end);
+            if (!is_name(constant_name) || value.empty() || *end != '\0' || !std::isfinite(number))
+              throw InputError(entry + "/Function constants = '" + constants + "': '" + constant +
+                               "' is not 'name=value' with a name (a letter or _, then letters, "
+                               "digits or _) and a finite number; e.g. 'd=0.01, w=2'.");
+            if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
+              throw InputError(entry + "/Function constants: '" + constant_name +
+                               "' is also a variable name (" + names +
+                               "); give the constant another name.");
+          }
+        const std::string expression = prm.get("Function expression");
+        const auto        components = Utilities::split_string_list(expression, ';').size();
+        if (components != n_components)
+          throw InputError(entry + "/Function expression = '" + expression +
+                           "': " + std::to_string(n_components) +
+                           " component(s) separated by ';' are needed, got " +
+                           std::to_string(components) + ".");
+      }
+    } // namespace
+
     template <int dim>
     std::shared_ptr<BoundaryFunction<dim>>
     parse_function(ParameterHandler  &prm,
@@ -107,25 +177,12 @@ namespace StabilizedLagrangian
       const std::string entry    = parent + "/" + name;
       auto              function = std::make_shared<BoundaryFunction<dim>>(entry, n_components);
       prm.enter_subsection(name);
-      const std::vector<std::string> variables =
-          Utilities::split_string_list(prm.get("Variable names"));
-      if (variables.size() != dim + 1)
-        throw InputError(entry + "/Variable names = '" + prm.get("Variable names") + "': a " +
-                         std::to_string(dim) + "D function needs " + std::to_string(dim + 1) +
-                         " variable names, the coordinates then time, e.g. '" +
-                         (dim == 2 ? "x,y,t" : "x,y,z,t") + "'.");
-      for (const auto &constant : Utilities::split_string_list(prm.get("Function constants")))
-        {
-          const std::string constant_name = Utilities::trim(constant.substr(0, constant.find('=')));
-          if (std::find(variables.begin(), variables.end(), constant_name) != variables.end())
-            throw InputError(entry + "/Function constants: '" + constant_name +
-                             "' is also a variable name (" + prm.get("Variable names") +
-                             "); give the constant another name.");
-        }
+      check_function_entries<dim>(prm, entry, n_components);
       const std::string cannot_parse =
-          entry + ": the function could not be parsed (" + std::to_string(n_components) +
-          " components separated by ';', variables x, y" + (dim == 3 ? ", z" : "") +
-          ", t, constants 'name=value, ...').";
+          entry + "/Function expression = '" + prm.get("Function expression") +
+          "': the expression could not be parsed (" + std::to_string(n_components) +
+          " components separated by ';', of the variables " + prm.get("Variable names") +
+          " and the constants of `Function constants`; muparser syntax).";
       try
         {
           function->parse_parameters(prm);

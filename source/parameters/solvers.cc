@@ -44,7 +44,8 @@ namespace StabilizedLagrangian
       max_cuts        = prm.get_integer("Maximum step cuts");
       wall_time_limit = prm.get_double("Wall time limit");
       if (!(end_time > 0.))
-        throw InputError("Load stepping/End time must be > 0.");
+        throw InputError("Load stepping/End time = " + prm.get("End time") +
+                         ": the time (s) the load stepping ends at must be > 0.");
       prm.leave_subsection();
     }
 
