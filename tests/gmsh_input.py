@@ -16,7 +16,8 @@ quadrilateral faces) with the same message whether their surfaces are given by
 name or by id; a .msh with a self-intersecting (bow-tie) quadrilateral is
 refused with a message naming the cell's place, not run into a singular
 system (an inverted cell, its vertices in the other order, deal.II's GridIn
-turns round itself)."""
+turns round itself); a shipped scene `include`d from another folder finds its
+mesh beside the scene's file (prm/meshes/), not beside the including file."""
 import os
 import re
 import sys
@@ -230,4 +231,13 @@ for name, scene, mesh, expected in (
     check(code == 1 and expected in log, f"{name}: exit {code}, refused naming the cell")
     if code != 1 or expected not in log:
         print(log[-1500:])
+
+# prm/gmsh_block.prm (relative `meshes/block.geo`) included from the work directory
+directory = os.path.join(workdir, "included_scene")
+code, log = sltest.run(executable, f"include {os.path.join(prm_dir, 'gmsh_block.prm')}\n" +
+                       sltest.nested_set("Load stepping/Number of load steps", 1) +
+                       sltest.QUIET_OUTPUT, directory, expect_success=False)
+check(code == 0, f"a scene included from another folder finds its mesh beside it: exit {code}")
+if code != 0:
+    print(log[-1500:])
 check.finish()

@@ -133,7 +133,8 @@ namespace StabilizedLagrangian
                           Patterns::FileName(),
                           "A .msh file (format 2 or 4, ASCII) or a .geo file, meshed by the "
                           "Gmsh library when the run starts; a relative path is looked up in "
-                          "the working directory, then beside the parameter file.");
+                          "the working directory, then beside the parameter file that sets "
+                          "it (an included file's meshes beside it).");
         prm.declare_entry(
             "Global refinements", "0", Patterns::Integer(0, 12), "Uniform refinements.");
         prm.declare_entry(
