@@ -119,12 +119,7 @@ namespace StabilizedLagrangian
         Scope::step_cut_and_checkpoint,
         [this](StateWriter &out) { out.put(segments_list()); },
         [this](StateReader &in) -> std::function<void()> {
-          std::vector<double> segments;
-          in.get(segments, "segment values");
-          if (!std::all_of(segments.begin(), segments.end(), [](const double x) {
-                return std::isfinite(x);
-              }))
-            in.damaged("its segments are not all finite");
+          const std::vector<double> segments = in.get_finite("segment values");
           try
             {
               restore_segments(segments);

@@ -1,5 +1,9 @@
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
+
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
 
@@ -9,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -48,45 +54,41 @@ namespace StabilizedLagrangian
      * way round: a negative Jacobian), self-intersecting (a bow-tie, whose
      * Jacobian changes sign over it) or degenerate (no volume): such a cell
      * gives a wrong or singular system, found only as a Newton iteration
-     * that does not converge. The Jacobian of a hypercube's multilinear map
-     * is checked at the 2^dim Gauss points (a corner's may vanish or turn
-     * negative on a usable cell: an edge collapsed on the axis of a meshed
-     * cylinder); a simplex's is constant, and deal.II maps either orientation.
+     * that does not converge. The Jacobian of the cell's linear mapping is
+     * checked at the 2^dim Gauss points of a hypercube (a corner's may vanish
+     * or turn negative on a usable cell: an edge collapsed on the axis of a
+     * meshed cylinder); a simplex's is constant, and deal.II maps either
+     * orientation, so only its size counts.
      */
     template <int dim>
     void
     check_cell_orientation(const Triangulation<dim> &triangulation)
     {
-      const QGauss<dim> gauss(2);
+      // one FEValues per kind of cell: its default linear mapping and Gauss points
+      std::map<ReferenceCell, std::pair<FE_Nothing<dim>, std::unique_ptr<FEValues<dim>>>> kinds;
       for (const auto &cell : triangulation.cell_iterators_on_level(0))
         {
-          const bool   simplex  = cell->reference_cell().is_simplex();
+          const ReferenceCell kind  = cell->reference_cell();
+          auto                found = kinds.find(kind);
+          if (found == kinds.end())
+            {
+              found = kinds.emplace(kind, std::make_pair(FE_Nothing<dim>(kind), nullptr)).first;
+              found->second.second =
+                  std::make_unique<FEValues<dim>>(kind.template get_default_linear_mapping<dim>(),
+                                                  found->second.first,
+                                                  kind.template get_gauss_type_quadrature<dim>(2),
+                                                  update_jacobians);
+            }
+          FEValues<dim> &fe_values = *found->second.second;
+          fe_values.reinit(cell);
+          const bool   simplex  = kind.is_simplex();
           const double scale    = std::pow(cell->diameter(), dim);
           double       smallest = std::numeric_limits<double>::max(), largest = -smallest;
-          for (unsigned int q = 0; q < (simplex ? 1 : gauss.size()); ++q)
+          for (const unsigned int q : fe_values.quadrature_point_indices())
             {
-              // J = Σ_v x_v ⊗ ∇N_v, N_v = Π_d (ξ_d or 1 − ξ_d by bit d of v);
-              // a simplex's edges from its vertex 0
-              Tensor<2, dim> jacobian;
-              if (simplex)
-                for (unsigned int d = 0; d < dim; ++d)
-                  for (unsigned int i = 0; i < dim; ++i)
-                    jacobian[i][d] = cell->vertex(d + 1)[i] - cell->vertex(0)[i];
-              else
-                for (const unsigned int v : cell->vertex_indices())
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      double slope = ((v >> d) & 1) ? 1. : -1.;
-                      for (unsigned int e = 0; e < dim; ++e)
-                        if (e != d)
-                          slope *= ((v >> e) & 1) ? gauss.point(q)[e] : 1. - gauss.point(q)[e];
-                      for (unsigned int i = 0; i < dim; ++i)
-                        jacobian[i][d] += cell->vertex(v)[i] * slope;
-                    }
-              const double det =
-                  (simplex ? std::abs(determinant(jacobian)) : determinant(jacobian)) / scale;
-              smallest = std::min(smallest, det);
-              largest  = std::max(largest, det);
+              const double det = determinant(Tensor<2, dim>(fe_values.jacobian(q))) / scale;
+              smallest         = std::min(smallest, simplex ? std::abs(det) : det);
+              largest          = std::max(largest, simplex ? std::abs(det) : det);
             }
           if (smallest > 1e-10)
             continue;
