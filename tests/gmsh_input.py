@@ -17,7 +17,9 @@ name or by id; a .msh with a self-intersecting (bow-tie) quadrilateral is
 refused with a message naming the cell's place, not run into a singular
 system (an inverted cell, its vertices in the other order, deal.II's GridIn
 turns round itself); a shipped scene `include`d from another folder finds its
-mesh beside the scene's file (prm/meshes/), not beside the including file."""
+mesh beside the scene's file (prm/meshes/), not beside the including file; a
+3D .geo in a 2D run, and a 2D one in a 3D run, are refused naming the entry
+and `Dimension`, not meshed in the run's dimension."""
 import os
 import re
 import sys
@@ -240,4 +242,18 @@ code, log = sltest.run(executable, f"include {os.path.join(prm_dir, 'gmsh_block.
 check(code == 0, f"a scene included from another folder finds its mesh beside it: exit {code}")
 if code != 0:
     print(log[-1500:])
+# a geometry of the other dimension: the 3D block in a 2D run, the 2D block in a 3D run
+block3d_scene = sltest.read_prm(os.path.join(prm_dir, "gmsh_block_3d.prm"))
+for name, text, geo, expected in (
+        ("3D geometry, 2D run", gmsh_scene, "block3d.geo", "its geometry is 3D"),
+        ("2D geometry, 3D run", block3d_scene, "block.geo", "its geometry is 2D")):
+    text = re.sub(r"set Mesh file\s*=.*", f"set Mesh file = {os.path.join(prm_dir, 'meshes', geo)}",
+                  text)
+    code, log = sltest.run(executable, text + sltest.QUIET_OUTPUT,
+                           os.path.join(workdir, name.replace(" ", "_").replace(",", "")),
+                           expect_success=False)
+    check(code == 1 and expected in log and "Geometry/gmsh/Mesh file" in log and "Dimension" in log,
+          f"{name}: exit {code}, refused naming the entry, the dimensions and `Dimension`")
+    if code != 1 or expected not in log:
+        print(log[-1500:])
 check.finish()

@@ -16,9 +16,10 @@
 
 #include <gmsh.h>
 
-#include <filesystem>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -42,6 +43,9 @@ namespace StabilizedLagrangian
        * size), so the meshing gets @p seconds of wall time and @p memory_mib of
        * address space, and a Gmsh that exits or crashes ends only the child.
        */
+      /** The child's exit code for a geometry of dimension d: this + d. */
+      constexpr int geometry_dimension_status = 10;
+
       void
       mesh_geo_file(const std::string &geo_file,
                     const std::string &msh_file,
@@ -68,6 +72,11 @@ namespace StabilizedLagrangian
                 gmsh::initialize();
                 gmsh::option::setNumber("General.Terminal", 0);
                 gmsh::open(geo_file);
+                // a geometry of another dimension than the run's: the exit
+                // code carries it to the parent's message
+                const int model_dim = gmsh::model::getDimension();
+                if (model_dim != dim)
+                  ::_exit(geometry_dimension_status + std::max(model_dim, 0));
                 gmsh::model::mesh::generate(dim);
                 gmsh::option::setNumber("Mesh.MshFileVersion", 2.2);
                 gmsh::write(msh_file);
@@ -95,6 +104,25 @@ namespace StabilizedLagrangian
                                  "mesh far finer than intended?");
               }
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          }
+        if (WIFEXITED(status) && WEXITSTATUS(status) >= geometry_dimension_status &&
+            WEXITSTATUS(status) <= geometry_dimension_status + 3)
+          {
+            const int model_dim = WEXITSTATUS(status) - geometry_dimension_status;
+            throw InputError(entry + ": its geometry is " +
+                             (model_dim == 0
+                                  ? std::string("empty (no point, curve, surface or "
+                                                "volume)")
+                                  : std::to_string(model_dim) + "D (its highest entities are " +
+                                        (model_dim == 3   ? "volumes"
+                                         : model_dim == 2 ? "surfaces"
+                                                          : "curves") +
+                                        ")") +
+                             ", and the run is " + std::to_string(dim) +
+                             "D (Dimension = " + std::to_string(dim) +
+                             "). Set `Dimension = " + std::to_string(std::clamp(model_dim, 2, 3)) +
+                             "` at the top of the parameter file, or give a " +
+                             std::to_string(dim) + "D geometry.");
           }
         if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))
           {
