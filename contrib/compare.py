@@ -9,6 +9,7 @@ Usage: contrib/compare.py SCENE.prm [--executable build/stabilized_lagrangian]
                       cell_shape=hypercube' ['pair=Q1/P1, refinement=2' ...] ...]
            [--set 'Section/Sub/Entry=value' ...] [--measure pressure|normal_force|tangential_force|half_width|peak]
            [--target ERROR] [--reference-pair PAIR] [--reference-refinement N]
+           [--against closed-form|reference] [--hertz 'R=..., bodies=1|2']
            [--jobs N] [--timeout SECONDS] [--workdir DIR] [--name NAME] [--output FOLDER | --doc]
 
 Runs the scene once per choice, --jobs runs at a time (contrib/robustness_map.py's
@@ -72,13 +73,44 @@ the nodal errors within 1.5 a), the error of the half-width and of the peak
 pressure. The closed form is that of a half-space: the finite body departs
 from it by O((a/R)^2), which bounds the errors from below.
 
-Otherwise against a reference solution the tool computes: the scene with
---reference-pair (default Q2/P1, stable in 2D and 3D; Q2/P2's multiplier
-oscillates between vertices and midsides, doc/fe_pairs.md; P2/P1 on a scene
-of simplices), on the scene's own cells, on the finest
-requested mesh refined once more (--reference-refinement), with the scene's
-r factors and its algorithm (--reference-algorithm: both reach the same
-solution, doc/formulation.md "Generalized Newton"; newton is often faster).
+Otherwise (or with --against reference) against a reference solution the
+tool computes: the scene with --reference-pair (default Q2/P1, stable in 2D
+and 3D; Q2/P2's multiplier oscillates between vertices and midsides,
+doc/fe_pairs.md; P2/P1 on a scene of simplices), on the scene's own cells, on
+the finest requested mesh refined once more (--reference-refinement), with
+the scene's r factors and its algorithm (--reference-algorithm: both reach the
+same solution, doc/formulation.md "Generalized Newton"; newton is often
+faster). The reference must be finer than every choice: a
+--reference-refinement not above the finest choice's, or a --reference-pair of
+a lower displacement degree than a choice's, is refused.
+
+The reference's own error is estimated and shown (the table's last row, `ref`,
+its errors marked ≈; the lines below the table; the CSV's
+reference_estimated_error): the tool also runs the reference's pair one and
+two levels coarser (a choice that is that run is not run again), and from the
+differences d1 (two levels coarser against one) and d0 (one level coarser
+against the reference) the observed order q = log2(d1/d0), at most 2, gives
+Richardson's estimate d0 / (2^q - 1) (contrib/reference_error.py; with only
+two levels q = 1, the estimate d0; differences that do not decrease: unknown).
+Beside it the reference run's own pressure estimate (`estimated_pressure_error`,
+doc/error_estimator.md); the larger of the two decides which orders stand: a
+measured error is the true one within the reference's error E, so where the
+errors of two choices next in order differ by at most 3 E the page says that
+their order is not to be trusted.
+
+A closed form beside the reference: --hertz 'R=50, bodies=2' (E and nu the
+scene's linear elastic ones unless given: 'R=50, bodies=2, E=200000, nu=0.3')
+says that the last load step is also Hertz's problem, of one body of radius R
+on a rigid plane or of two equal bodies of radius R (R* = R/2, E* = E / (2
+(1 - nu^2))), frictionless or with equal materials (their normal and
+tangential problems uncouple), the contact zone centred at x = 0 (so not
+after a sliding phase: prm/two_cylinders.prm with `--set 'Load stepping/End
+time=0.5'`). On a Hertz scene --against reference does the same with the
+scene's own constants. The table gets a column of the relative L2 error of
+the contact pressure against the closed form (contrib/hertz_errors.py, the
+run's own normal force), the reference's too, and the page says whether the
+order of the choices against the reference is their order against the
+closed form.
 At the last load step: the relative errors of the normal and the tangential
 contact force (the latter left empty where the reference's is zero, a
 frictionless scene), and the relative L2 error of the contact pressure
@@ -123,7 +155,7 @@ import robustness_map  # noqa: E402
 import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 from hertz_errors import hertz_errors  # noqa: E402
-from reference_error import TRUST_FRACTION, doubtful_orders, ranking, richardson  # noqa: E402
+from reference_error import TRUST_FRACTION_TEXT, doubtful_orders, ranking, richardson  # noqa: E402
 
 LOOPS = ("Geometry loop", "Friction loop", "Status loop")
 ALGORITHMS = ("nested", "newton", "scene")
@@ -633,7 +665,8 @@ def markdown(rows, error_columns, key, target, best, scene, reference_lines, bas
         cells += [number(r.get("dofs")), number(r.get("newton_iterations")),
                   number(r.get("wall_time_s")), number(r.get("peak_memory_MiB"), 4)]
         if r is reference_row:
-            cells += [f"≈ {percent(r['estimates'][c])}" if c in r["estimates"] else percent(r.get(c))
+            cells += [("≈ " if math.isfinite(r["estimates"][c]) else "") + percent(r["estimates"][c])
+                      if c in r["estimates"] else percent(r.get(c))
                       for c, _ in error_columns]
         else:
             cells += [percent(r.get(c)) if ok else "—" for c, _ in error_columns]
@@ -809,12 +842,14 @@ def pair_degree(pair):
 def reference_ladder(scene, runs):
     """The reference (key 0) and the same pair one and two levels coarser, where the scene's refinements
     allow: a choice's key where a choice is that run, else a new key -1, -2 in runs. Keys, finest first."""
+    def resolved(choice):  # `scene` is the scene's own algorithm
+        return choice._replace(algorithm=scene.algorithm) if choice.algorithm == "scene" else choice
     ladder = [0]
     for step in (1, 2):
         coarser = runs[0]._replace(refinement=runs[0].refinement - step)
         if scene.refinements + coarser.refinement < 0:
             break
-        same = [k for k, c in runs.items() if c == coarser]
+        same = [k for k, c in runs.items() if k > 0 and resolved(c) == resolved(coarser)]
         if not same:
             runs[-step] = coarser
         ladder.append(same[0] if same else -step)
@@ -931,11 +966,11 @@ def reference_notes(scene, runs, done, ladder, estimates, rows, key):
     elif doubts:
         lines.append(
             f"**The order of the choices is not to be trusted**: the reference's estimated error, "
-            f"{percent(error)}, is not below {TRUST_FRACTION:.2g} of the difference between the errors of "
+            f"{percent(error)}, is not below {TRUST_FRACTION_TEXT} of the difference between the errors of "
             + ", of ".join(f"{a} and {b} ({percent(gap)})" for a, b, gap in doubts)
             + ". A finer reference (`--reference-refinement`) or choices further apart decide it.")
     else:
-        lines.append(f"The reference's estimated error, {percent(error)}, is below {TRUST_FRACTION:.2g} of every "
+        lines.append(f"The reference's estimated error, {percent(error)}, is below {TRUST_FRACTION_TEXT} of every "
                      "difference between the errors of choices next in order: the order stands.")
     if scene.closed_form:
         hertz = [(f"#{r['index']}", r.get("hertz_pressure_l2_error")) for r in rows if r["outcome"] == "converged"]

@@ -20,7 +20,7 @@ import math
 
 MAX_ORDER = 2.0
 # the reference's estimated error must be below this fraction of a difference it decides
-TRUST_FRACTION = 1 / 3
+TRUST_FRACTION, TRUST_FRACTION_TEXT = 1 / 3, "a third"
 
 
 def richardson(fine, coarse):
