@@ -17,6 +17,8 @@ reference's error E (triangle inequality), so two choices whose measured errors
 differ by less than 2 E may be in either order; the tool asks for 3 E, room for
 E being an estimate."""
 import math
+import os
+import sys
 
 MAX_ORDER = 2.0
 # the reference's estimated error must be below this fraction of a difference it decides
@@ -51,3 +53,9 @@ def ranking(values):
     """The labels of [(label, value)] by increasing finite value."""
     return [label for label, v in sorted(values, key=lambda lv: lv[1])
             if v is not None and math.isfinite(v)]
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import tool_cli
+    tool_cli.module_help(__doc__)
