@@ -950,26 +950,26 @@ def reference_notes(scene, runs, done, ladder, estimates, rows, key):
     levels = ", ".join(str(scene.refinements + runs[k].refinement) for k in ladder[::-1] if done[k][2] is not None)
     estimate, order, how, differences = estimates[key]
     own = reference.get("estimated_pressure_error")
-    error = max(estimate, own) if key == "pressure_l2_error" and own is not None else estimate
+    if key != "pressure_l2_error" or not isinstance(own, float) or not math.isfinite(own):
+        own = None
+    error = estimate if own is None else max(estimate, own)
     line = (f"The reference's estimated error ({MEASURE_LABELS[key]}): **{percent(estimate)}** (its levels "
             f"{levels} of `{runs[0].pair}` differ by {' and '.join(percent(d) for d in differences[::-1]) or '—'}: "
             f"{how}; contrib/reference_error.py)")
-    if key == "pressure_l2_error" and own is not None:
+    if own is not None:
         line += f"; the run's own pressure estimate {percent(own)} (doc/error_estimator.md)"
     if scene.closed_form:
         line += f"; against Hertz's closed form {percent(closed_form_error(scene, reference))}"
     lines = [line + "."]
     values = [(f"#{r['index']}", r.get(key)) for r in rows if r["outcome"] == "converged"]
     doubts = doubtful_orders(values, error)
-    if len(ranking(values)) < 2:
-        pass
-    elif doubts:
+    if doubts:
         lines.append(
             f"**The order of the choices is not to be trusted**: the reference's estimated error, "
             f"{percent(error)}, is not below {TRUST_FRACTION_TEXT} of the difference between the errors of "
             + ", of ".join(f"{a} and {b} ({percent(gap)})" for a, b, gap in doubts)
             + ". A finer reference (`--reference-refinement`) or choices further apart decide it.")
-    else:
+    elif len(ranking(values)) > 1:
         lines.append(f"The reference's estimated error, {percent(error)}, is below {TRUST_FRACTION_TEXT} of every "
                      "difference between the errors of choices next in order: the order stands.")
     if scene.closed_form:

@@ -150,6 +150,16 @@ reference_row = re.search(r"^\| ref \| Q2/P1 \|.* \| 4 \| converged \|.*≈ [0-9
 check(estimate is not None and reference_row is not None and "The reference's estimated error" in out,
       "the reference's estimated error (levels 2, 3, 4 of Q2/P1) in the page, its row in the table and in the "
       f"output: {re.findall(r'The reference.s estimated error.*', text)[:1]}, {bool(reference_row)}")
+# Richardson's estimate from the two differences the page shows: d0 / (2^q - 1), q = log2(d1 / d0) <= 2
+levels = re.search(r"differ by ([0-9.]+) % and ([0-9.]+) %: observed order ([0-9.]+)", text)
+if estimate and levels:
+    d1, d0, order = (float(x) for x in levels.groups())
+    expected = min(math.log2(d1 / d0), 2.0)
+    check(abs(order - expected) < 0.01 and abs(float(estimate.group(1)) - d0 / (2 ** expected - 1)) < 0.01 *
+          float(estimate.group(1)) + 0.005, f"the estimate {estimate.group(1)} % is d0 / (2^q - 1) of the "
+          f"differences d1 {d1} %, d0 {d0} % and the order {order} ({expected:.3f})")
+else:
+    check(False, "the page shows the differences between the reference's levels and their observed order")
 rows = []
 if os.path.exists(os.path.join(against, "compare_tiny_hertz.csv")):
     with open(os.path.join(against, "compare_tiny_hertz.csv"), newline="") as f:
