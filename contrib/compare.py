@@ -570,8 +570,9 @@ def pareto_front(points):
 OFFSETS = [(4, 4), (4, -11), (-11, 4), (-11, -11)]
 
 
-def plot(rows, key, scene_name, target, best, png_path):
-    """Error against wall time and against DoFs, a line per (pair, algorithm, factors) through its meshes."""
+def plot(rows, key, scene_name, target, best, png_path, reference_error=None):
+    """Error against wall time and against DoFs, a line per (pair, algorithm, factors) through its meshes;
+    the reference's estimated error a grey band (errors below it are not measured)."""
     figure = Figure(figsize=(13, 5.2), layout="constrained")
     FigureCanvasAgg(figure)
     axes = figure.subplots(1, 2)
@@ -611,6 +612,9 @@ def plot(rows, key, scene_name, target, best, png_path):
                     label="Pareto front")
         if target is not None:
             ax.axhline(target, color="red", linestyle=":", linewidth=1, label=f"target {target:g}")
+        if reference_error is not None and 0 < reference_error < math.inf and plotted:
+            ax.axhspan(min(reference_error, min(r[key] for r in plotted)) / 2, reference_error, color="grey",
+                       alpha=0.2, zorder=0, label=f"within the reference's estimated error ({percent(reference_error)})")
         if best is not None:
             ax.plot(best[x_key], best[key], "*", markersize=18, mfc="none", mec="red", mew=1.5,
                     label="cheapest meeting the target")
@@ -1051,7 +1055,8 @@ def main():
                *(["meets_target", "cheapest"] if args.target else [])]
     csv_path, png_path, md_path = (tool_cli.destination(args, args.name + suffix) for suffix in (".csv", ".png", ".md"))
     robustness_map.write_csv(rows, csv_path, columns)
-    plot(rows, key, os.path.basename(args.scene), args.target, best, png_path)
+    plot(rows, key, os.path.basename(args.scene), args.target, best, png_path,
+         estimates[key][0] if estimates else None)
     show_factors = any(r["rn_factor"] != 1 or r["rt_factor"] != 1 for r in rows)
     show_stopping = len({r["stopping"] for r in rows}) > 1 or any(r["stopping"] != "fixed" for r in rows)
     show_cells = len({r["cell_shape"] for r in rows}) > 1
