@@ -15,8 +15,10 @@ into triangles (`cell_shape=simplex`) with P1/P1 runs beside Q1/P1, each row
 naming its cell shape; a Q pair on simplices is refused. Against the tool's
 reference (--against reference, Hertz's closed form beside it): the reference
 is refused unless finer than every choice and of their highest degree, its
-estimated error is shown (the page, its row of the table, the output), and its
-order of the choices is that of their errors against the closed form."""
+estimated error is shown (the page, its row of the table, the output) and is
+Richardson's d0 / (2^q - 1) of the levels' differences the page shows, and its
+order of the choices is that of their errors against the closed form (computed
+here from the runs' profiles)."""
 import csv
 import glob
 import math
