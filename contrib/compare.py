@@ -9,6 +9,7 @@ Usage: contrib/compare.py SCENE.prm [--executable build/stabilized_lagrangian]
                       cell_shape=hypercube' ['pair=Q1/P1, refinement=2' ...] ...]
            [--set 'Section/Sub/Entry=value' ...] [--measure pressure|normal_force|tangential_force|half_width|peak]
            [--target ERROR] [--reference-pair PAIR] [--reference-refinement N]
+           [--against closed-form|reference] [--hertz 'R=..., bodies=1|2']
            [--jobs N] [--timeout SECONDS] [--workdir DIR] [--name NAME] [--output FOLDER | --doc]
 
 Runs the scene once per choice, --jobs runs at a time (contrib/robustness_map.py's
@@ -72,13 +73,44 @@ the nodal errors within 1.5 a), the error of the half-width and of the peak
 pressure. The closed form is that of a half-space: the finite body departs
 from it by O((a/R)^2), which bounds the errors from below.
 
-Otherwise against a reference solution the tool computes: the scene with
---reference-pair (default Q2/P1, stable in 2D and 3D; Q2/P2's multiplier
-oscillates between vertices and midsides, doc/fe_pairs.md; P2/P1 on a scene
-of simplices), on the scene's own cells, on the finest
-requested mesh refined once more (--reference-refinement), with the scene's
-r factors and its algorithm (--reference-algorithm: both reach the same
-solution, doc/formulation.md "Generalized Newton"; newton is often faster).
+Otherwise (or with --against reference) against a reference solution the
+tool computes: the scene with --reference-pair (default Q2/P1, stable in 2D
+and 3D; Q2/P2's multiplier oscillates between vertices and midsides,
+doc/fe_pairs.md; P2/P1 on a scene of simplices), on the scene's own cells, on
+the finest requested mesh refined once more (--reference-refinement), with
+the scene's r factors and its algorithm (--reference-algorithm: both reach the
+same solution, doc/formulation.md "Generalized Newton"; newton is often
+faster). The reference must be finer than every choice: a
+--reference-refinement not above the finest choice's, or a --reference-pair of
+a lower displacement degree than a choice's, is refused.
+
+The reference's own error is estimated and shown (the table's last row, `ref`,
+its errors marked ≈; the lines below the table; the CSV's
+reference_estimated_error): the tool also runs the reference's pair one and
+two levels coarser (a choice that is that run is not run again), and from the
+differences d1 (two levels coarser against one) and d0 (one level coarser
+against the reference) the observed order q = log2(d1/d0), at most 2, gives
+Richardson's estimate d0 / (2^q - 1) (contrib/reference_error.py; with only
+two levels q = 1, the estimate d0; differences that do not decrease: unknown).
+Beside it the reference run's own pressure estimate (`estimated_pressure_error`,
+doc/error_estimator.md); the larger of the two decides which orders stand: a
+measured error is the true one within the reference's error E, so where the
+errors of two choices next in order differ by at most 3 E the page says that
+their order is not to be trusted.
+
+A closed form beside the reference: --hertz 'R=50, bodies=2' (E and nu the
+scene's linear elastic ones unless given: 'R=50, bodies=2, E=200000, nu=0.3')
+says that the last load step is also Hertz's problem, of one body of radius R
+on a rigid plane or of two equal bodies of radius R (R* = R/2, E* = E / (2
+(1 - nu^2))), frictionless or with equal materials (their normal and
+tangential problems uncouple), the contact zone centred at x = 0 (so not
+after a sliding phase: prm/two_cylinders.prm with `--set 'Load stepping/End
+time=0.5'`). On a Hertz scene --against reference does the same with the
+scene's own constants. The table gets a column of the relative L2 error of
+the contact pressure against the closed form (contrib/hertz_errors.py, the
+run's own normal force), the reference's too, and the page says whether the
+order of the choices against the reference is their order against the
+closed form.
 At the last load step: the relative errors of the normal and the tangential
 contact force (the latter left empty where the reference's is zero, a
 frictionless scene), and the relative L2 error of the contact pressure
@@ -123,6 +155,7 @@ import robustness_map  # noqa: E402
 import run_output  # noqa: E402
 import tool_cli  # noqa: E402
 from hertz_errors import hertz_errors  # noqa: E402
+from reference_error import TRUST_FRACTION_TEXT, doubtful_orders, ranking, richardson  # noqa: E402
 
 LOOPS = ("Geometry loop", "Friction loop", "Status loop")
 ALGORITHMS = ("nested", "newton", "scene")
@@ -176,6 +209,25 @@ def choice_spec(text):
     for spec in specs:
         checked_choice(spec)
     return specs
+
+
+def hertz_spec(text):
+    """argparse type: 'R=50, bodies=2' (keys R > 0, bodies 1 or 2, E and nu optional); a dict."""
+    spec = {}
+    for item in (item for item in text.split(",") if item.strip()):
+        key, sep, value = (part.strip() for part in item.partition("="))
+        try:
+            spec[key] = (int if key == "bodies" else float)(value) if sep and key in ("R", "bodies", "E", "nu") \
+                else None
+        except ValueError:
+            spec[key] = None
+        if spec[key] is None:
+            raise argparse.ArgumentTypeError(f"'{item.strip()}' in '{text}' is not R=number, bodies=1|2, E=number "
+                                             "or nu=number")
+    if spec.get("R", 0) <= 0 or spec.get("bodies", 1) not in (1, 2) or spec.get("E", 1) <= 0 \
+            or not 0 <= spec.get("nu", 0) < 0.5:
+        raise argparse.ArgumentTypeError(f"'{text}': R > 0 is needed, bodies is 1 or 2, E > 0, 0 <= nu < 0.5")
+    return spec
 
 
 def checked_choice(spec):
@@ -232,6 +284,18 @@ class Scene:
 
     def number(self, entry):
         return float(self.parameters[entry])
+
+    def given_closed_form(self, spec):
+        """Hertz's constants (E, nu, R of hertz_errors) of --hertz 'R=..., bodies=2': two equal bodies of
+        radius R are one of radius R/2 on a rigid plane with E halved (1/R* = 2/R, 1/E* = 2 (1 - nu^2)/E).
+        ValueError if the scene's material is not linear elastic and E or nu is not given."""
+        elastic = "Material/linear elastic/"
+        if ("E" not in spec or "nu" not in spec) and self.parameters["Material/Model"] != "linear elastic":
+            raise ValueError("--hertz takes E and nu from Material/Model = linear elastic; the scene's is "
+                             f"{self.parameters['Material/Model']}: give them ('R=50, E=200000, nu=0.3')")
+        bodies = spec.get("bodies", 1)
+        return {"E": spec.get("E", self.number(elastic + "Young's modulus")) / bodies,
+                "nu": spec.get("nu", self.number(elastic + "Poisson's ratio")), "R": spec["R"] / bodies}
 
     def hertz_constants(self):
         """{'E', 'nu', 'R'} if the scene is Hertz's problem, else None."""
@@ -365,6 +429,7 @@ def run_results(case_dir):
             "failed_newton_iterations": int(summary["failed_attempt_newton_iterations"]),
             "wall_time_s": summary["wall_time_s"], "peak_memory_MiB": summary["peak_memory_MiB"],
             "estimated_relative_error": summary["estimated_relative_error"],
+            "estimated_pressure_error": last.get("estimated_pressure_error"),
             "normal_force_N": last["normal_force_N"], "tangential_force_N": last["tangential_force_N"],
             "profile": profile}
 
@@ -472,6 +537,8 @@ def accuracy(scene, results, reference):
 def percent(value):
     if value is None:
         return "—"
+    if value == math.inf:
+        return "unknown"
     return "NaN" if not math.isfinite(value) else f"{100 * value:.3g} %"
 
 
@@ -503,8 +570,9 @@ def pareto_front(points):
 OFFSETS = [(4, 4), (4, -11), (-11, 4), (-11, -11)]
 
 
-def plot(rows, key, scene_name, target, best, png_path):
-    """Error against wall time and against DoFs, a line per (pair, algorithm, factors) through its meshes."""
+def plot(rows, key, scene_name, target, best, png_path, reference_error=None):
+    """Error against wall time and against DoFs, a line per (pair, algorithm, factors) through its meshes;
+    the reference's estimated error a grey band (errors below it are not measured)."""
     figure = Figure(figsize=(13, 5.2), layout="constrained")
     FigureCanvasAgg(figure)
     axes = figure.subplots(1, 2)
@@ -544,6 +612,9 @@ def plot(rows, key, scene_name, target, best, png_path):
                     label="Pareto front")
         if target is not None:
             ax.axhline(target, color="red", linestyle=":", linewidth=1, label=f"target {target:g}")
+        if reference_error is not None and 0 < reference_error < math.inf and plotted:
+            ax.axhspan(min(reference_error, min(r[key] for r in plotted)) / 2, reference_error, color="grey",
+                       alpha=0.2, zorder=0, label=f"within the reference's estimated error ({percent(reference_error)})")
         if best is not None:
             ax.plot(best[x_key], best[key], "*", markersize=18, mfc="none", mec="red", mew=1.5,
                     label="cheapest meeting the target")
@@ -565,8 +636,10 @@ def plot(rows, key, scene_name, target, best, png_path):
 TEXT_COLUMNS = ("pair", "algorithm", "stopping", "cells", "outcome", "target")  # left-aligned in the page's table
 
 
-def markdown(rows, error_columns, key, target, best, scene, reference_line, basis, command, png_name, show_factors,
-             show_stopping, show_cells):
+def markdown(rows, error_columns, key, target, best, scene, reference_lines, basis, command, png_name, show_factors,
+             show_stopping, show_cells, reference_row=None):
+    """The page; reference_row (the reference's results and its estimated errors, `estimates`) is the table's
+    last row, its errors marked ≈ as estimates."""
     header = ["#", "pair", "algorithm", *(["stopping"] if show_stopping else []), *(["cells"] if show_cells else []),
               "global ref.",
               *(["r_n factor", "r_t factor"] if show_factors else []),
@@ -586,7 +659,7 @@ def markdown(rows, error_columns, key, target, best, scene, reference_line, basi
              "last load step.", "",
              "| " + " | ".join(header) + " |",
              "|" + "".join("---|" if title in TEXT_COLUMNS else "---:|" for title in header)]
-    for r in rows:
+    for r in rows + ([reference_row] if reference_row else []):
         ok = r["outcome"] == "converged"
         cells = [str(r["index"]), r["pair"], r["algorithm"], *([r["stopping"]] if show_stopping else []),
                  *([r["cell_shape"]] if show_cells else []), str(r["global_refinements"])]
@@ -595,7 +668,12 @@ def markdown(rows, error_columns, key, target, best, scene, reference_line, basi
         cells.append(r["outcome"] if ok else f"**failed: {r['outcome']}** (exit code {number(r['exit_code'])})")
         cells += [number(r.get("dofs")), number(r.get("newton_iterations")),
                   number(r.get("wall_time_s")), number(r.get("peak_memory_MiB"), 4)]
-        cells += [percent(r.get(c)) if ok else "—" for c, _ in error_columns]
+        if r is reference_row:
+            cells += [("≈ " if math.isfinite(r["estimates"][c]) else "") + percent(r["estimates"][c])
+                      if c in r["estimates"] else percent(r.get(c))
+                      for c, _ in error_columns]
+        else:
+            cells += [percent(r.get(c)) if ok else "—" for c, _ in error_columns]
         cells.append(percent(r.get("estimated_relative_error")) if ok else "—")
         if target:
             cells.append("**cheapest**" if r is best else "meets" if r.get("meets_target") else "")
@@ -603,8 +681,8 @@ def markdown(rows, error_columns, key, target, best, scene, reference_line, basi
             cells = [f"**{c}**" if c and not c.startswith("**") else c for c in cells]
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
-    if reference_line:
-        lines += [reference_line, ""]
+    for line in reference_lines:
+        lines += [line, ""]
     if target:
         lines += [target_sentence(best, key, target, rows), ""]
     lines += [f"![error against wall time and DoFs]({png_name})", "",
@@ -684,6 +762,14 @@ def parse_arguments():
                         help="its algorithm (default: %(default)s, the scene's loop methods)")
     parser.add_argument("--reference-refinement", type=int, metavar="N",
                         help="its level added to the scene's global refinements (default: the finest choice's + 1)")
+    parser.add_argument("--hertz", type=hertz_spec, metavar="'R=..., bodies=1|2'",
+                        help="the scene's last load step is also Hertz's problem (frictionless, or two equal "
+                             "bodies whose normal and tangential problems uncouple): bodies of radius R, E and nu "
+                             "the scene's linear elastic ones unless given; the choices' and the reference's "
+                             "pressure errors against the closed form are shown beside those against the reference")
+    parser.add_argument("--against", choices=("closed-form", "reference"), default="closed-form",
+                        help="what a Hertz scene's errors are measured against (default: %(default)s; reference: "
+                             "the closed form beside it, to check the reference)")
     parser.add_argument("--jobs", type=tool_cli.positive_int, default=os.cpu_count(),
                         help="runs at a time (default: %(default)s)")
     parser.add_argument("--timeout", type=tool_cli.positive_float, default=3600,
@@ -703,13 +789,26 @@ def parse_arguments():
 
 
 def plan(parser, args):
-    """The scene, the runs {key: choice} (key 0 the reference, 1, 2, ... the choices) and their parameter
-    texts; a usage error for what does not fit the scene."""
+    """The scene, the runs {key: choice} (key 0 the reference, 1, 2, ... the choices, -1, -2 the reference's
+    coarser levels that are not choices), their parameter texts and the reference's ladder (the keys of the
+    reference and of its coarser levels, finest first; empty against a closed form); a usage error for what
+    does not fit the scene."""
     try:
         scene = Scene(args.executable, args.scene, args.workdir, args.set)
     except (ValueError, KeyError) as error:
         parser.error(f"the scene {args.scene}: {error}")
     runs = dict(enumerate(choices_of(args, scene, parser), 1))
+    ladder = []
+    scene.closed_form = None  # Hertz's constants measured beside the reference
+    if args.hertz and scene.hertz:
+        parser.error("--hertz: the scene is Hertz's problem, its closed form is known already")
+    if args.against == "reference" and scene.hertz:
+        scene.closed_form, scene.hertz = scene.hertz, None
+    elif args.hertz:
+        try:
+            scene.closed_form = scene.given_closed_form(args.hertz)
+        except (ValueError, KeyError) as error:
+            parser.error(str(error))
     key = MEASURES[args.measure]
     own = dict(HERTZ_ERRORS if scene.hertz else REFERENCE_ERRORS)
     if key not in own:
@@ -720,27 +819,58 @@ def plan(parser, args):
             args.reference_pair = "P2/P1" if simplex_pair(scene.pair) else "Q2/P1"
         if scene.pairs and args.reference_pair not in scene.pairs:
             parser.error(f"--reference-pair '{args.reference_pair}' is not one of {', '.join(sorted(scene.pairs))}")
-        level = args.reference_refinement
-        if level is None:
-            level = max(c.refinement for c in runs.values()) + 1
-        if scene.refinements + level < 0:
-            parser.error(f"--reference-refinement {level}: the scene's {scene.refinement_entry} would be negative")
+        finest = max(c.refinement for c in runs.values())
+        level = finest + 1 if args.reference_refinement is None else args.reference_refinement
+        if level <= finest:
+            parser.error(f"--reference-refinement {level}: the reference must be finer than every choice, at "
+                         f"least {finest + 1} (the finest choice's refinement is {finest})")
+        degree = max(pair_degree(c.pair) for c in runs.values())
+        if pair_degree(args.reference_pair) < degree:
+            parser.error(f"--reference-pair {args.reference_pair}: the reference must be of at least the "
+                         f"choices' highest displacement degree, {degree}")
         runs[0] = Choice(args.reference_pair, args.reference_algorithm, level, 1.0, 1.0, "fixed", scene.cell_shape)
+        ladder = reference_ladder(scene, runs)
     try:
         texts = {k: scene.text(c, args.set) for k, c in runs.items()}
     except ValueError as error:
         parser.error(str(error))
-    return scene, runs, texts
+    return scene, runs, texts, ladder
+
+
+def pair_degree(pair):
+    """The displacement degree of a pair: Q2/P1 -> 2."""
+    found = re.match(r"[QP](\d+)", pair)
+    return int(found.group(1)) if found else 1
+
+
+def reference_ladder(scene, runs):
+    """The reference (key 0) and the same pair one and two levels coarser, where the scene's refinements
+    allow: a choice's key where a choice is that run, else a new key -1, -2 in runs. Keys, finest first."""
+    def resolved(choice):  # `scene` is the scene's own algorithm
+        return choice._replace(algorithm=scene.algorithm) if choice.algorithm == "scene" else choice
+    ladder = [0]
+    for step in (1, 2):
+        coarser = runs[0]._replace(refinement=runs[0].refinement - step)
+        if scene.refinements + coarser.refinement < 0:
+            break
+        same = [k for k, c in runs.items() if k > 0 and resolved(c) == resolved(coarser)]
+        if not same:
+            runs[-step] = coarser
+        ladder.append(same[0] if same else -step)
+    return ladder
 
 
 def run_all(args, scene, runs, texts):
     """Run them, the reference and the finest meshes first (the longest start first); {key: (runner's row,
     directory, results or None)}."""
-    labels = {k: ("reference " if k == 0 else f"#{k} ") + describe(c, scene) for k, c in runs.items()}
-    directories = {k: os.path.join(args.workdir, "reference" if k == 0 else f"{k:02d}_{slug(describe(c, scene))}")
+    names = {0: "reference", -1: "reference one level coarser", -2: "reference two levels coarser"}
+    labels = {k: (names[k] + " " if k <= 0 else f"#{k} ") + describe(c, scene) for k, c in runs.items()}
+    directories = {k: os.path.join(args.workdir, slug(names[k]) if k <= 0 else f"{k:02d}_{slug(describe(c, scene))}")
                    for k, c in runs.items()}
     order = sorted(runs, key=lambda k: (k != 0, -runs[k].refinement, runs[k].pair, k))
-    print(f"{len(runs) - (0 in runs)} choice(s){' and the reference' if 0 in runs else ''} of {args.scene}, "
+    coarser = sum(k < 0 for k in runs)
+    print(f"{sum(k > 0 for k in runs)} choice(s){' and the reference' if 0 in runs else ''}"
+          f"{f' (and {coarser} coarser level(s) of it)' if coarser else ''} of {args.scene}, "
           f"{args.jobs} at a time, in {args.workdir}", flush=True)
     start = time.monotonic()
 
@@ -772,7 +902,7 @@ def table_rows(scene, runs, done):
     """A row per choice: the choice, the runner's outcome, the run's results and errors."""
     reference = done[0][2] if 0 in done else None
     rows = []
-    for k in sorted(k for k in runs if k):
+    for k in sorted(k for k in runs if k > 0):
         choice, (ran, _, results) = runs[k], done[k]
         row = {"index": k, "label": describe(choice, scene), **choice._asdict(),
                "global_refinements": scene.refinements + choice.refinement, "outcome": ran["outcome"],
@@ -780,8 +910,79 @@ def table_rows(scene, runs, done):
         if results:
             row.update({name: value for name, value in results.items() if name != "profile"})
             row.update(accuracy(scene, results, reference))
+            if scene.closed_form:
+                row["hertz_pressure_l2_error"] = closed_form_error(scene, results)
         rows.append(row)
     return rows
+
+
+def closed_form_error(scene, results):
+    """The relative L2 error of a run's last contact pressure against Hertz's closed form of --hertz, with
+    the run's own normal force (contrib/hertz_errors.py); NaN without a node in contact."""
+    try:
+        return hertz_errors(scene.dim, results["normal_force_N"], results["profile"], **scene.closed_form)[
+            "l2_error"]
+    except ValueError:
+        return math.nan
+
+
+def reference_estimate(scene, runs, done, ladder):
+    """The reference's estimated errors {error column: (estimate, observed order, how, differences)}, from
+    the differences between the levels of its ladder (contrib/reference_error.py); {} if it failed."""
+    results = [done[k][2] for k in ladder]
+    if not results or results[0] is None:
+        return {}
+    differences = []
+    for fine, coarse in zip(results, results[1:]):
+        if coarse is None:
+            break
+        differences.append(accuracy(scene, coarse, fine))
+    estimates = {}
+    for column, _ in REFERENCE_ERRORS:
+        measured = [d.get(column) for d in differences]
+        fine, coarse = (measured + [None, None])[:2]
+        estimates[column] = (*richardson(fine, coarse), [m for m in measured if m is not None])
+    return estimates
+
+
+def reference_notes(scene, runs, done, ladder, estimates, rows, key):
+    """The page's lines on the reference's own error, on the order of the choices it decides, and, with
+    --hertz, the reference's error and the choices' order against the closed form."""
+    reference = done[0][2]
+    if reference is None:
+        return []
+    levels = ", ".join(str(scene.refinements + runs[k].refinement) for k in ladder[::-1] if done[k][2] is not None)
+    estimate, order, how, differences = estimates[key]
+    own = reference.get("estimated_pressure_error")
+    if key != "pressure_l2_error" or not isinstance(own, float) or not math.isfinite(own):
+        own = None
+    error = estimate if own is None else max(estimate, own)
+    line = (f"The reference's estimated error ({MEASURE_LABELS[key]}): **{percent(estimate)}** (its levels "
+            f"{levels} of `{runs[0].pair}` differ by {' and '.join(percent(d) for d in differences[::-1]) or '—'}: "
+            f"{how}; contrib/reference_error.py)")
+    if own is not None:
+        line += f"; the run's own pressure estimate {percent(own)} (doc/error_estimator.md)"
+    if scene.closed_form:
+        line += f"; against Hertz's closed form {percent(closed_form_error(scene, reference))}"
+    lines = [line + "."]
+    values = [(f"#{r['index']}", r.get(key)) for r in rows if r["outcome"] == "converged"]
+    doubts = doubtful_orders(values, error)
+    if doubts:
+        lines.append(
+            f"**The order of the choices is not to be trusted**: the reference's estimated error, "
+            f"{percent(error)}, is not below {TRUST_FRACTION_TEXT} of the difference between the errors of "
+            + ", of ".join(f"{a} and {b} ({percent(gap)})" for a, b, gap in doubts)
+            + ". A finer reference (`--reference-refinement`) or choices further apart decide it.")
+    elif len(ranking(values)) > 1:
+        lines.append(f"The reference's estimated error, {percent(error)}, is below {TRUST_FRACTION_TEXT} of every "
+                     "difference between the errors of choices next in order: the order stands.")
+    if scene.closed_form:
+        hertz = [(f"#{r['index']}", r.get("hertz_pressure_l2_error")) for r in rows if r["outcome"] == "converged"]
+        by_reference, by_hertz = ranking(values), ranking(hertz)
+        lines.append(f"Order by the {MEASURE_LABELS[key]} against the reference: {', '.join(by_reference)}; by "
+                     f"the relative L2 error of the contact pressure against Hertz's closed form: "
+                     f"{', '.join(by_hertz)}: {'the same' if by_reference == by_hertz else '**a different**'} order.")
+    return lines
 
 
 def accuracy_text(scene, runs, done, rows):
@@ -802,7 +1003,9 @@ def accuracy_text(scene, runs, done, rows):
     if reference is None:
         return basis, (f"**The reference run failed** ({ran['outcome']}, exit code {ran['exit_code']}; "
                        f"{os.path.join(directory, 'log.txt')}): no error is measured.")
-    return basis, (f"Reference: {reference['dofs']} DoFs, {reference['newton_iterations']} Newton iterations, "
+    return basis, (f"Reference: `{choice.pair}`, {scene.refinement_entry.split('/')[-1]} = "
+                   f"{scene.refinements + choice.refinement}, {reference['dofs']} DoFs, "
+                   f"{reference['newton_iterations']} Newton iterations, "
                    f"{reference['wall_time_s']:.3g} s, {reference['peak_memory_MiB']:.4g} MiB; "
                    f"F_n = {reference['normal_force_N']:.7g} N, F_t = {reference['tangential_force_N']:.7g} N"
                    f"{' per mm of thickness' if scene.dim == 2 else ''}; its estimate "
@@ -811,11 +1014,16 @@ def accuracy_text(scene, runs, done, rows):
 
 def main():
     parser, args = parse_arguments()
-    scene, runs, texts = plan(parser, args)
+    scene, runs, texts, ladder = plan(parser, args)
     done = run_all(args, scene, runs, texts)
     rows = table_rows(scene, runs, done)
     key = MEASURES[args.measure]
     reference = done[0][2] if 0 in done else None
+    estimates = reference_estimate(scene, runs, done, ladder) if ladder else {}
+    notes = reference_notes(scene, runs, done, ladder, estimates, rows, key) if estimates else []
+    for r in rows:
+        if estimates:
+            r["reference_estimated_error"] = estimates[key][0]
     error_columns = HERTZ_ERRORS if scene.hertz else [
         c for c in REFERENCE_ERRORS if c[0] != "tangential_force_error" or reference is None
         or relative(0.0, reference["tangential_force_N"], reference["normal_force_N"]) is not None]
@@ -827,22 +1035,35 @@ def main():
             r["meets_target"] = value is not None and math.isfinite(value) and value <= args.target
             r["cheapest"] = r is best
     basis, reference_line = accuracy_text(scene, runs, done, rows)
+    if scene.closed_form:
+        error_columns = error_columns + [("hertz_pressure_l2_error", "p L2 error against Hertz")]
+    reference_row = None
+    if reference is not None:
+        choice = runs[0]
+        reference_row = {"index": "ref", **choice._asdict(), "global_refinements": scene.refinements + choice.refinement,
+                         "outcome": "converged", **reference,
+                         "estimates": {c: e[0] for c, e in estimates.items()}}
+        if scene.closed_form:
+            reference_row["hertz_pressure_l2_error"] = closed_form_error(scene, reference)
 
     columns = ["index", "pair", "algorithm", "stopping", "cell_shape", "refinement", "global_refinements", "rn_factor", "rt_factor",
                "outcome", "exit_code", "cells", "dofs", "load_steps", "newton_iterations", "failed_newton_iterations",
                "wall_time_s",
                "process_time_s", "peak_memory_MiB", "normal_force_N", "tangential_force_N",
-               *[c for c, _ in error_columns], "estimated_relative_error",
+               *[c for c, _ in error_columns], "estimated_relative_error", "estimated_pressure_error",
+               *(["reference_estimated_error"] if estimates else []),
                *(["meets_target", "cheapest"] if args.target else [])]
     csv_path, png_path, md_path = (tool_cli.destination(args, args.name + suffix) for suffix in (".csv", ".png", ".md"))
     robustness_map.write_csv(rows, csv_path, columns)
-    plot(rows, key, os.path.basename(args.scene), args.target, best, png_path)
+    plot(rows, key, os.path.basename(args.scene), args.target, best, png_path,
+         estimates[key][0] if estimates else None)
     show_factors = any(r["rn_factor"] != 1 or r["rt_factor"] != 1 for r in rows)
     show_stopping = len({r["stopping"] for r in rows}) > 1 or any(r["stopping"] != "fixed" for r in rows)
     show_cells = len({r["cell_shape"] for r in rows}) > 1
     robustness_map.write_section(md_path, BEGIN, END, markdown(
-        rows, error_columns, key, args.target, best, scene, reference_line, basis, regenerating_command(args),
-        os.path.basename(png_path), show_factors, show_stopping, show_cells))
+        rows, error_columns, key, args.target, best, scene, [reference_line] + notes if reference_line else [],
+        basis, regenerating_command(args), os.path.basename(png_path), show_factors, show_stopping, show_cells,
+        reference_row))
 
     for r in rows:
         measured = ", ".join(f"{title} {percent(r.get(c))}" for c, title in error_columns)
@@ -850,8 +1071,8 @@ def main():
             f", {r['dofs']} DoFs, {r['newton_iterations']} Newton, {r['wall_time_s']:.3g} s, "
             f"{r['peak_memory_MiB']:.4g} MiB, {measured}, estimate {percent(r['estimated_relative_error'])}"
             if r["outcome"] == "converged" else ""))
-    if reference_line:
-        print(reference_line.replace("**", ""))
+    for line in ([reference_line] + notes if reference_line else []):
+        print(line.replace("**", "").replace("`", ""))
     if args.target:
         print(target_sentence(best, key, args.target, rows))
     print(f"wrote {md_path}, {os.path.basename(csv_path)} and {os.path.basename(png_path)}")

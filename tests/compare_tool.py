@@ -12,10 +12,18 @@ stopping (`Nonlinear solver/Stopping`, the scene's: fixed). --choice takes a
 list: several words after one flag, or in one word a key given again (or ';')
 starts the next choice. The half ball split
 into triangles (`cell_shape=simplex`) with P1/P1 runs beside Q1/P1, each row
-naming its cell shape; a Q pair on simplices is refused."""
+naming its cell shape; a Q pair on simplices is refused. Against the tool's
+reference (--against reference, Hertz's closed form beside it): the reference
+is refused unless finer than every choice and of their highest degree, its
+estimated error is shown (the page, its row of the table, the output) and is
+Richardson's d0 / (2^q - 1) of the levels' differences the page shows, and its
+order of the choices is that of their errors against the closed form (computed
+here from the runs' profiles)."""
 import csv
+import glob
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -123,6 +131,64 @@ check(code == 0 and [(r["pair"], r["cell_shape"], r["outcome"]) for r in rows] =
       f"cell shapes: exit code {code}, rows {[(r['pair'], r['cell_shape'], r['outcome']) for r in rows]}")
 check(len(rows) == 2 and all(finite(r["pressure_l2_error"]) for r in rows),
       f"cell shapes: the errors against Hertz {[r['pressure_l2_error'] for r in rows]}")
+
+# the reference (issue 50): a Hertz scene measured against the tool's reference (--against reference), the
+# closed form beside it. The reference is finer than every choice (one level, the highest degree), its own
+# error is estimated from its coarser levels and shown, and its order of the choices is Hertz's: the errors
+# against the closed form computed here from each run's profile (contrib/hertz_errors.py), not read from
+# the tool's table
+sys.path.insert(0, os.path.join(root, "contrib"))
+import run_output  # noqa: E402
+from hertz_errors import hertz_errors  # noqa: E402
+
+against = os.path.join(workdir, "against_reference")
+code, out, err = run("--choice", "pair=Q1/P1", "pair=Q2/P1", "pair=Q1/P1, refinement=1", "--against", "reference",
+                     "--jobs", "2", "--workdir", against)
+check(code == 0, f"--against reference: exit code {code}: {out[-800:]} {err[-800:]}")
+page = os.path.join(against, "compare_tiny_hertz.md")
+text = open(page).read() if os.path.exists(page) else ""
+estimate = re.search(r"The reference's estimated error \([^)]*\): \*\*([0-9.]+) %\*\* \(its levels 2, 3, 4", text)
+reference_row = re.search(r"^\| ref \| Q2/P1 \|.* \| 4 \| converged \|.*≈ [0-9.]+ %", text, re.M)
+check(estimate is not None and reference_row is not None and "The reference's estimated error" in out,
+      "the reference's estimated error (levels 2, 3, 4 of Q2/P1) in the page, its row in the table and in the "
+      f"output: {re.findall(r'The reference.s estimated error.*', text)[:1]}, {bool(reference_row)}")
+# Richardson's estimate from the two differences the page shows: d0 / (2^q - 1), q = log2(d1 / d0) <= 2
+levels = re.search(r"differ by ([0-9.]+) % and ([0-9.]+) %: observed order ([0-9.]+)", text)
+if estimate and levels:
+    d1, d0, order = (float(x) for x in levels.groups())
+    expected = min(math.log2(d1 / d0), 2.0)
+    check(abs(order - expected) < 0.01 and abs(float(estimate.group(1)) - d0 / (2 ** expected - 1)) < 0.01 *
+          float(estimate.group(1)) + 0.005, f"the estimate {estimate.group(1)} % is d0 / (2^q - 1) of the "
+          f"differences d1 {d1} %, d0 {d0} % and the order {order} ({expected:.3f})")
+else:
+    check(False, "the page shows the differences between the reference's levels and their observed order")
+rows = []
+if os.path.exists(os.path.join(against, "compare_tiny_hertz.csv")):
+    with open(os.path.join(against, "compare_tiny_hertz.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+check(len(rows) == 3 and all(finite(r.get("reference_estimated_error", "")) for r in rows),
+      f"the reference's estimate in the CSV: {[r.get('reference_estimated_error') for r in rows]}")
+closed_form = {}
+for r in rows:
+    found = glob.glob(os.path.join(against, f"{int(r['index']):02d}_*"))
+    if not found:
+        continue
+    output_dir = found[0]
+    statistics = run_output.read_csv(os.path.join(output_dir, "output", "statistics.csv"))
+    profiles = sorted(f for f in os.listdir(os.path.join(output_dir, "output")) if f.startswith("profile-"))
+    profile = run_output.read_csv(os.path.join(output_dir, "output", profiles[-1]))
+    closed_form[r["index"]] = hertz_errors(2, statistics[-1]["normal_force_N"], profile, R=100.0)["l2_error"]
+by_reference = sorted(closed_form, key=lambda i: float(next(r for r in rows if r["index"] == i)["pressure_l2_error"]))
+by_hertz = sorted(closed_form, key=closed_form.get)
+check(len(by_hertz) == 3 and by_reference == by_hertz and "the same order" in text,
+      f"the order against the reference {by_reference} is Hertz's {by_hertz} "
+      f"({ {i: round(e, 4) for i, e in closed_form.items()} })")
+# a reference no finer than the finest choice, or of a lower degree, is refused
+for arguments, message in ((["--choice", "refinement=1", "--reference-refinement", "1"], "finer than every choice"),
+                           (["--choice", "pair=Q2/P1", "--reference-pair", "Q1/P1"], "highest displacement degree")):
+    bad = os.path.join(workdir, "coarse_reference")
+    code, out, err = run(*arguments, "--against", "reference", "--workdir", bad)
+    check(code == 2 and message in err, f"{' '.join(arguments)}: exit code {code}, '{err.strip()[-200:]}'")
 
 # bad arguments: exit code 2 with a message, nothing run
 for arguments, message in ((["--jobs", "0"], "--jobs"), (["--pairs", "Q9/P9"], "Q9/P9"),
