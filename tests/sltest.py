@@ -287,6 +287,19 @@ def last_profile(outdir):
     return read_csv(os.path.join(outdir, profiles[-1]))
 
 
+def cycle_pressure_errors(output, rows, measure="l2_error"):
+    """Each refinement cycle's (rows of refinement_cycles.csv in output) error of the last
+    load step's contact pressure against Hertz with the run's force (contrib/hertz_errors.py)."""
+    from hertz_errors import hertz_errors
+    errors = []
+    for row in rows:
+        where = os.path.join(output, f"cycle-{int(row['cycle'])}")
+        where = where if os.path.isdir(where) else output
+        force = read_csv(os.path.join(where, "statistics.csv"))[-1]["normal_force_N"]
+        errors.append(hertz_errors(2, force, last_profile(where))[measure])
+    return errors
+
+
 class Checker:
     """Collects named checks, prints each, and exits non-zero if any failed."""
 

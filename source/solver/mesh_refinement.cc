@@ -19,7 +19,9 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -80,6 +82,64 @@ namespace StabilizedLagrangian
         // η_K of the last converged load step (ErrorEstimator)
         mark_for_refinement(view.error_indicators);
         break;
+      }
+    // η_K measures the energy error, spread over the body: the 30 % of the
+    // cells it refines may hold none under Γc, where the pressure error is
+    // (doc/error_estimator.md, "Accuracy targets")
+    if (view.parameters.target_pressure_error > 0. &&
+        (view.parameters.criterion == Criterion::kelly ||
+         view.parameters.criterion == Criterion::estimator))
+      flag_for_pressure();
+  }
+
+  template <int dim>
+  void
+  MeshRefinement<dim>::flag_for_pressure()
+  {
+    // bulk marking of the faces of Γc: the fewest cells whose squared
+    // mismatch makes up pressure_bulk of its sum (Γc is a small part of the
+    // mesh: every rank sorts all of it)
+    constexpr double    pressure_bulk = 0.8;
+    const Vector<float> indicators    = view.pressure_indicators();
+    std::vector<float>  on_contact;
+    for (const auto &cell : view.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && indicators[cell->active_cell_index()] > 0.f)
+        on_contact.push_back(indicators[cell->active_cell_index()]);
+    std::vector<float> all;
+    for (const auto &part : Utilities::MPI::all_gather(view.communicator, on_contact))
+      all.insert(all.end(), part.begin(), part.end());
+    if (all.empty())
+      return;
+    std::sort(all.begin(), all.end(), std::greater<float>());
+    double total = 0.;
+    for (const float value : all)
+      total += value;
+    double carried   = 0.;
+    float  threshold = all.back();
+    for (const float value : all)
+      {
+        carried += value;
+        threshold = value;
+        if (carried >= pressure_bulk * total)
+          break;
+      }
+    // with their face neighbours: the pressure is set by the stresses below Γc
+    std::vector<typename Triangulation<dim>::active_cell_iterator> marked;
+    for (const auto &cell : view.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && indicators[cell->active_cell_index()] >= threshold &&
+          indicators[cell->active_cell_index()] > 0.f)
+        marked.push_back(cell);
+    for (const auto &cell : marked)
+      {
+        cell->clear_coarsen_flag();
+        cell->set_refine_flag();
+        for (const unsigned int f : cell->face_indices())
+          if (!cell->at_boundary(f) && cell->neighbor(f)->is_active() &&
+              cell->neighbor(f)->is_locally_owned())
+            {
+              cell->neighbor(f)->clear_coarsen_flag();
+              cell->neighbor(f)->set_refine_flag();
+            }
       }
   }
 

@@ -46,7 +46,8 @@ namespace StabilizedLagrangian
 
   template <int dim>
   double
-  ErrorEstimator<dim>::pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const
+  ErrorEstimator<dim>::pressure_estimate(const TrilinosWrappers::MPI::Vector &u,
+                                         Vector<double>                      *per_cell) const
   {
     // ‖p* − λ_n‖ / ‖λ_n‖ on Γc, p* = −N·P*N from the recovered stress P*,
     // with a Gauss rule two orders above the pair's on each face: between
@@ -80,6 +81,7 @@ namespace StabilizedLagrangian
     };
     for (const auto &face : view.contact.faces())
       {
+        const double before = mismatch;
         face_values.reinit(face.cell, face.face_no);
         Tensor<1, dim> normal;
         for (unsigned int q = 0; q < rule.size(); ++q)
@@ -105,6 +107,8 @@ namespace StabilizedLagrangian
               return -(recovered[q] * N) * N;
             });
           }
+        if (per_cell != nullptr)
+          (*per_cell)[face.cell->active_cell_index()] += mismatch - before;
       }
     mismatch = Utilities::MPI::sum(mismatch, view.communicator);
     norm     = Utilities::MPI::sum(norm, view.communicator);
@@ -173,9 +177,27 @@ namespace StabilizedLagrangian
     return Utilities::MPI::max(compliance, view.communicator);
   }
 
+  template <int dim>
+  Vector<float>
+  ErrorEstimator<dim>::pressure_indicators(const TrilinosWrappers::MPI::Vector &u)
+  {
+    // the recovered stress reads the committed state as estimate() does
+    share_ghost_history();
+    view.body_response.compute_volume_fields(u);
+    Vector<double> squared(view.triangulation.n_active_cells());
+    pressure_estimate(u, &squared);
+    return Vector<float>(squared.begin(), squared.end());
+  }
+
   // (the rest of ErrorEstimator is instantiated in error_estimator.cc)
   template double
-  ErrorEstimator<2>::pressure_estimate(const TrilinosWrappers::MPI::Vector &) const;
+  ErrorEstimator<2>::pressure_estimate(const TrilinosWrappers::MPI::Vector &,
+                                       Vector<double> *) const;
   template double
-  ErrorEstimator<3>::pressure_estimate(const TrilinosWrappers::MPI::Vector &) const;
+  ErrorEstimator<3>::pressure_estimate(const TrilinosWrappers::MPI::Vector &,
+                                       Vector<double> *) const;
+  template Vector<float>
+  ErrorEstimator<2>::pressure_indicators(const TrilinosWrappers::MPI::Vector &);
+  template Vector<float>
+  ErrorEstimator<3>::pressure_indicators(const TrilinosWrappers::MPI::Vector &);
 } // namespace StabilizedLagrangian

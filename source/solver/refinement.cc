@@ -74,7 +74,11 @@ namespace StabilizedLagrangian
                                               mpi_communicator,
                                               pcout,
                                               [this]() { return ghosted_displacement(); },
-                                              [this]() { setup_after_refinement(); }};
+                                              [this]() { setup_after_refinement(); },
+                                              [this]() {
+                                                return ErrorEstimator<dim>(error_estimator_view())
+                                                    .pressure_indicators(ghosted_displacement());
+                                              }};
   }
 
   // Explicit instantiation of the members defined in this file (the class

@@ -132,8 +132,19 @@ namespace StabilizedLagrangian
       return target == 0. || estimate <= target;
     };
     return met(problem.adaptive_refinement.target_error, problem.last_step.relative_error()) &&
-           met(problem.adaptive_refinement.target_pressure_error,
-               problem.last_step.estimated_pressure_error);
+           met(problem.adaptive_refinement.target_pressure_error, pressure_error_bound());
+  }
+
+  template <int dim>
+  double
+  RefinementCycles<dim>::pressure_error_bound() const
+  {
+    // The pressure estimate is not a bound: against Hertz's closed form it is
+    // 0.80-1.94 times the true error (doc/error_estimator.md, section 1), so
+    // an estimate just below the target left the true error above it. Divided
+    // by the smallest effectivity measured, it bounds the error on those scenes.
+    constexpr double smallest_effectivity = 0.8;
+    return problem.last_step.estimated_pressure_error / smallest_effectivity;
   }
 
   template <int dim>
@@ -158,10 +169,10 @@ namespace StabilizedLagrangian
            << " displacement DoFs; estimated relative error " << std::setprecision(3)
            << problem.last_step.relative_error() << " (target "
            << problem.adaptive_refinement.target_error << "), pressure "
-           << problem.last_step.estimated_pressure_error << " (target "
-           << problem.adaptive_refinement.target_pressure_error << "); the cycles took "
-           << std::fixed << std::setprecision(1) << totals.wall_time << " s and "
-           << totals.newton_iterations << " Newton iterations in all\n";
+           << problem.last_step.estimated_pressure_error << ", bound " << pressure_error_bound()
+           << " (target " << problem.adaptive_refinement.target_pressure_error
+           << "); the cycles took " << std::fixed << std::setprecision(1) << totals.wall_time
+           << " s and " << totals.newton_iterations << " Newton iterations in all\n";
     problem.pcout << (met ? "" : "WARNING: ") << report.str();
     if (problem.adaptive_refinement.target_pressure_error > 0. &&
         problem.last_step.points_in_contact == 0)

@@ -127,6 +127,14 @@ namespace StabilizedLagrangian
     EnergyEstimate
     energy_estimate(const TrilinosWrappers::MPI::Vector &u);
 
+    /**
+     * @brief Where the pressure estimate's mismatch is, for a `Target pressure
+     * error`: ∫_F (p* − λ_n)² of each locally owned cell's faces on Γc, of the
+     * converged state @p u (0 on the cells without such a face).
+     */
+    Vector<float>
+    pressure_indicators(const TrilinosWrappers::MPI::Vector &u);
+
   private:
     /**
      * The residual terms of every locally owned cell: the volume, face and
@@ -215,10 +223,12 @@ namespace StabilizedLagrangian
     add_contact_residuals(const TrilinosWrappers::MPI::Vector &u, Vector<double> &contact) const;
     /**
      * The pressure estimate: the relative L2 mismatch on Γc between the normal
-     * traction of the recovered stress (StressRecovery) and λ_n.
+     * traction of the recovered stress (StressRecovery) and λ_n; each face's
+     * squared mismatch added to its cell's entry of @p per_cell where given.
      */
     double
-    pressure_estimate(const TrilinosWrappers::MPI::Vector &u) const;
+    pressure_estimate(const TrilinosWrappers::MPI::Vector &u,
+                      Vector<double>                      *per_cell = nullptr) const;
     /** The stress of @p u at the Barlow points of a cell, for StressRecovery. */
     typename StressRecovery<dim>::Sampler
     barlow_sampler(const TrilinosWrappers::MPI::Vector &u) const;

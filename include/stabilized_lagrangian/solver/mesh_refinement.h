@@ -68,6 +68,11 @@ namespace StabilizedLagrangian
       std::function<TrilinosWrappers::MPI::Vector()> ghosted_displacement;
       /** set up the DoFs and the problem on the refined mesh */
       std::function<void()> setup_after_refinement;
+      /**
+       * the squared pressure mismatch of each cell's faces on Γc, of the last
+       * converged state (ErrorEstimator::pressure_indicators)
+       */
+      std::function<Vector<float>()> pressure_indicators;
     };
 
     /** @brief A refinement of the mesh @p view shows. */
@@ -95,6 +100,13 @@ namespace StabilizedLagrangian
      */
     void
     mark_for_refinement(const Vector<float> &indicators);
+    /**
+     * With a `Target pressure error` (Kelly, estimator): flag the cells under
+     * Γc whose faces carry most of the pressure mismatch, and the cells
+     * sharing a face with them.
+     */
+    void
+    flag_for_pressure();
     /** Flag the cells near the recorded active set for refinement. */
     void
     refine_around_active_set();

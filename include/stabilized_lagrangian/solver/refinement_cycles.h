@@ -139,9 +139,19 @@ namespace StabilizedLagrangian
     /** Add the cycle to @p totals and its row to refinement_cycles.csv. */
     void
     record(const double wall_time, Totals &totals) const;
-    /** Whether the last load step's estimates meet the accuracy targets. */
+    /**
+     * Whether the last load step's estimates meet the accuracy targets (the
+     * pressure by pressure_error_bound()).
+     */
     bool
     targets_met() const;
+    /**
+     * The last load step's pressure estimate divided by the smallest
+     * effectivity measured against closed forms: what `Target pressure error`
+     * is compared with.
+     */
+    double
+    pressure_error_bound() const;
     /**
      * After the cycles of an accuracy target: move the output of cycle @p last
      * into the run's directory, report the cost and write target_error.csv.
