@@ -235,12 +235,13 @@ namespace StabilizedLagrangian
     {
       /**
        * ParameterHandler's message with "Line <N> of file <input string>"
-       * replaced by the file and line the expanded line N came from.
+       * replaced by the file and line the expanded line N came from (its
+       * message for an unknown subsection lacks the closing '>').
        */
       std::string
       locate(const std::string &message, const ExpandedFile &file)
       {
-        static const std::regex where("Line <([0-9]+)> of file <[^>]*>");
+        static const std::regex where("Line <([0-9]+)> of file <input string>?");
         std::smatch             match;
         if (!std::regex_search(message, match, where))
           return message;

@@ -4,8 +4,10 @@ that include themselves, devices, directories and FIFOs; boundary functions
 that give NaN or inf at some time, or whose constants shadow a variable; broken
 Gmsh .msh files (empty, truncated, unknown version or element type, missing
 nodes, NaN coordinates, counts larger than the file, random bytes, binary);
-.geo files that exit, loop forever, mesh far too finely or do not parse; and
-material, contact and load-stepping values outside their range.
+.geo files that exit, loop forever, mesh far too finely or do not parse;
+material, contact and load-stepping values outside their range; a contact zone
+radius that holds no face of a coarse mesh; and a misspelt subsection after an
+include or inside an included file (named at its own file and line).
 
 Each case must end within its time limit with exit code 1 and a message that
 names the file or entry (the `expect` text of the case), without a crash trace
@@ -440,6 +442,30 @@ for name, mesh in (("good.msh", GOOD_MSH), ("good4.msh", GOOD_MSH4)):
                      if code == 0 else None)
 check(good_runs[0] is not None and good_runs[0] == good_runs[1],
       "formats 2.2 and 4.1 of the same mesh give the same statistics (wall time aside)")
+
+# a contact zone radius in (0, 2 R] that holds no face centre of a coarse mesh: the zone's entry,
+# its radius, the nearest face centre's distance and what to do (not "no boundary with this id")
+text_case("a contact zone holding no face", scene(settings=[
+    ("Geometry/Model", "half ball"), ("Geometry/half ball/Global refinements", "0"),
+    ("Geometry/half ball/Local refinements", "0"), ("Geometry/half ball/Contact zone radius", "5")]),
+          "Contact/Contact boundary ids = 2: the contact zone holds no face of the mesh. Geometry/half "
+          "ball/Contact zone radius = 5 mm takes the curved faces whose centre lies within 5 mm of the "
+          "contact point (0 0), and on this mesh the nearest face centre is 29.2893 mm from it (faces "
+          "of 141.421 mm there). Raise Geometry/half ball/Contact zone radius above 29.2893 mm, or refine")
+# a misspelt subsection after an include of a shipped scene, and one inside an included file: the
+# file and the line where it is written (it was the line of the expanded text in "file <input string")
+SHIPPED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "prm", "patin_elastic.prm")
+included = scene() + "subsection Contactt\n  set r_n = 1\nend\n"
+for name, files, expect in (
+        ("a misspelt subsection after an include",
+         {"input.prm": f"include {SHIPPED}\n# a comment\n\n\nsubsection Contactt\n  set r_n = 1\nend\n"},
+         "'input.prm' line 5: There is no such subsection to be entered: Contactt"),
+        ("a misspelt subsection in an included file", {"input.prm": "# the scene\ninclude base.prm\n",
+                                                       "base.prm": included},
+         f"'base.prm' line {included.splitlines().index('subsection Contactt') + 1}: There is no such "
+         "subsection to be entered: Contactt")):
+    prepare, expect, prm = files_case(files, "input.prm", None, expect)
+    cases.append((name, prepare, expect, prm))
 
 CRASH = re.compile(r"Segmentation|Signal:|terminate called|Aborted|core dumped|Stacktrace|\*\*\* Process")
 tally = {"clean error": 0, "crash": 0, "hang": 0, "accepted": 0}

@@ -12,7 +12,18 @@
 - `Obstacle/Motion` the scene cannot follow: in a two-body scene (the two
   cylinders) there is no obstacle to move, and in an axisymmetric model (the
   axisymmetric Hertz ball) a radial motion is no motion of a body of revolution:
-  both must warn, naming the entry; without a motion, neither warns."""
+  both must warn, naming the entry; without a motion, neither warns.
+- An obstacle that reaches into the body outside its contact surface (the
+  coarse Hertz cylinder, `Contact zone radius = 10`): with the plane 3 mm above
+  the pole before the first step, and with the plane moved up 5 mm by
+  `Obstacle/Motion` at the end time (the body undeformed), the run must warn
+  before the first step, naming `Contact/Contact boundary ids`, the boundary
+  reached (0), how deep, and the zone radius's entry; with the shipped zone
+  radius (20) and a 1 mm motion it must not.
+- An axisymmetric model (the axisymmetric Hertz ball) with an obstacle that is
+  no body of revolution about the axis: a tilted plane must warn, naming
+  `Obstacle/plane/Normal`, a ball off the axis `Obstacle/ball/Center`; a ball
+  on the axis must not warn."""
 import os
 import re
 import sys
@@ -74,4 +85,49 @@ for name, scene, motion, warning in (
     check(code == 0, f"{name}: exit code {code}")
     check((warning in log) if warning else ("Obstacle/Motion" not in log),
           f"{name}: " + ("warns, naming Obstacle/Motion" if warning else "no motion warning"))
+
+# an obstacle reaching into the body outside Γc, before the first step or at the end time
+hertz = sltest.coarse_hertz() + one_step + sltest.QUIET_OUTPUT
+for name, settings, warnings in (
+        ("pass_through_at_start", [("Obstacle/plane/Point", "0, 3"),
+                                   ("Geometry/half ball/Contact zone radius", "10")],
+         ["before the first step"]),
+        ("pass_through_at_end", [("Obstacle/Motion/Function expression", "0; 5*t"),
+                                 ("Geometry/half ball/Contact zone radius", "10")],
+         ["at the end time, with the obstacle where Obstacle/Motion takes it"]),
+        ("no_pass_through", [("Obstacle/Motion/Function expression", "0; t")], [])):
+    text = hertz.replace("delta=1.5", "delta=0") + "".join(sltest.nested_set(*setting) for setting in settings)
+    code, log = sltest.run(executable, text, f"{workdir}/{name}", expect_success=False, timeout=600)
+    start = log.find("WARNING: the obstacle reaches into the body outside its contact surface "
+                     "(Contact/Contact boundary ids = 2)")
+    said = log[start:log.find("\n", log.find("Add those boundaries", start))] if start >= 0 else ""
+    first_step = re.search(r"^step +1 ", log, re.MULTILINE)
+    if warnings:
+        check(start >= 0 and (first_step is None or start < first_step.start()) and
+              re.search(r"\n  boundary 0: [0-9.]+ mm deep at \(", said) is not None and
+              all(w in said for w in warnings) and
+              "or raise Geometry/half ball/Contact zone radius" in said and
+              ("before the first step" in said) == ("before the first step" in warnings),
+              f"{name}: warned before the first step, naming Contact/Contact boundary ids, "
+              f"boundary 0, its depth and the zone radius ({said[:300]!r})")
+    else:
+        check(start < 0 and "reaches into the body" not in log, f"{name}: no pass-through warning")
+
+# an axisymmetric model's obstacle that is no body of revolution about the axis
+axisymmetric = sltest.read_prm(os.path.join(prm_directory, "hertz_axisymmetric.prm")) + one_step + \
+    sltest.nested_set("Geometry/half ball/Global refinements", 2) + \
+    sltest.nested_set("Geometry/half ball/Local refinements", 2) + sltest.QUIET_OUTPUT
+ball = [("Obstacle/Model", "ball"), ("Obstacle/ball/Radius", "100")]
+for name, settings, entry in (
+        ("axisymmetric_tilted_plane", [("Obstacle/plane/Normal", "0.1, 1")], "Obstacle/plane/Normal points along"),
+        ("axisymmetric_ball_off_axis", ball + [("Obstacle/ball/Center", "30, -100")],
+         "Obstacle/ball/Center = 30 -100 lies 30 mm off the axis"),
+        ("axisymmetric_ball_on_axis", ball + [("Obstacle/ball/Center", "0, -100")], None)):
+    code, log = sltest.run(executable, axisymmetric + "".join(sltest.nested_set(*setting) for setting in settings),
+                           f"{workdir}/{name}", expect_success=False)
+    warned = "WARNING: the obstacle is no body of revolution about the axis x = 0 of the " \
+             "axisymmetric model (Geometry/Axisymmetric = true)" in log
+    check(code == 0 and (warned and entry in log if entry else not warned),
+          f"{name}: exit code {code}, " + (f"warns, naming {entry.split(' ')[0]}" if entry else "no warning")
+          + f" ({warned})")
 check.finish()

@@ -104,6 +104,47 @@ namespace StabilizedLagrangian
           throw InputError(message.str());
         }
     }
+
+    /**
+     * Why the contact zone @p zone holds no face of @p triangulation (its
+     * radius is below the distance of the nearest face centre from its
+     * centre), and what to do, for the message of @p entry = @p id.
+     */
+    template <int dim>
+    std::string
+    empty_zone_message(const Triangulation<dim>                             &triangulation,
+                       const MPI_Comm                                        communicator,
+                       const typename Geometry::Interface<dim>::ContactZone &zone,
+                       const std::string                                    &entry)
+    {
+      // the curved faces outside the zone: the nearest centre and the size of the faces there
+      double nearest = std::numeric_limits<double>::max();
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() == zone.outside_id)
+              nearest = std::min(nearest, face->center().distance(zone.centre));
+      nearest     = Utilities::MPI::min(nearest, communicator);
+      double size = 0.;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() == zone.outside_id &&
+                face->center().distance(zone.centre) <= nearest * (1. + 1e-12))
+              size = std::max(size, face->diameter());
+      size                       = Utilities::MPI::max(size, communicator);
+      const std::string  section = zone.entry.substr(0, zone.entry.rfind('/'));
+      std::ostringstream message;
+      message << entry << " = " << zone.id << ": the contact zone holds no face of the mesh. "
+              << zone.entry << " = " << zone.radius
+              << " mm takes the curved faces whose centre lies within " << zone.radius
+              << " mm of the contact point (" << zone.centre << "), and on this mesh the nearest "
+              << "face centre is " << nearest << " mm from it (faces of " << size
+              << " mm there). Raise " << zone.entry << " above " << nearest
+              << " mm, or refine the mesh near the contact point (" << section
+              << "/Global refinements, Local refinements).";
+      return message.str();
+    }
   } // namespace
 
   template <int dim>
@@ -253,10 +294,13 @@ namespace StabilizedLagrangian
       if (mesh_id != ghost_layer_boundary_id)
         mesh_ids.insert(mesh_id);
     mesh_ids = Utilities::MPI::compute_set_union(mesh_ids, communicator);
-    if (mesh_ids.count(id) == 0)
-      throw InputError(entry + " = " + std::to_string(id) +
-                       ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) +
-                       ".");
+    if (mesh_ids.count(id) > 0)
+      return;
+    for (const auto &zone : geometry.contact_zones())
+      if (zone.id == id)
+        throw InputError(empty_zone_message(*storage, communicator, zone, entry));
+    throw InputError(entry + " = " + std::to_string(id) +
+                     ": the mesh has no boundary with this id; it has " + list_ids(mesh_ids) + ".");
   }
 
   template <int dim>

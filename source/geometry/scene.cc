@@ -330,6 +330,7 @@ namespace StabilizedLagrangian
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , contact_radius(contact_zone_radius(prm, section, radius))
+          , zone_entry(section + "/Contact zone radius")
           , symmetric(prm.get_bool("Symmetry planes"))
           , simplex(
                 read_cell_shape<dim>(prm, section, local_refinements > 0 && refinement_radius > 0.))
@@ -342,6 +343,13 @@ namespace StabilizedLagrangian
       simplex_cells() const override
       {
         return simplex;
+      }
+
+      /** Id 2 about the lowest point, the origin; the rest of the curved side id 0. */
+      std::vector<typename Interface<dim>::ContactZone>
+      contact_zones() const override
+      {
+        return {{2, 0, Point<dim>(), contact_radius, zone_entry}};
       }
 
       void
@@ -429,6 +437,7 @@ namespace StabilizedLagrangian
       const double       radius;
       const unsigned int global_refinements, local_refinements;
       const double       refinement_radius, contact_radius;
+      const std::string  zone_entry;
       const bool         symmetric;
       const bool         simplex;
     };
@@ -470,6 +479,7 @@ namespace StabilizedLagrangian
           , local_refinements(prm.get_integer("Local refinements"))
           , refinement_radius(prm.get_double("Local refinement radius"))
           , contact_radius(contact_zone_radius(prm, section, radius))
+          , zone_entry(section + "/Contact zone radius")
       {
         if (!(radius > 0.))
           throw InputError(section + "/Radius must be > 0.");
@@ -561,10 +571,21 @@ namespace StabilizedLagrangian
         return {{"upper", 1}, {"lower", 2}};
       }
 
+      /** Id 2 about the upper pole, id 7 about the lower one; the rest of the curved faces id 0. */
+      std::vector<typename Interface<dim>::ContactZone>
+      contact_zones() const override
+      {
+        Point<dim> upper_pole;
+        upper_pole[dim - 1] = gap;
+        return {{2, 0, upper_pole, contact_radius, zone_entry},
+                {7, 0, Point<dim>(), contact_radius, zone_entry}};
+      }
+
     private:
       const double       radius, gap;
       const unsigned int global_refinements, local_refinements;
       const double       refinement_radius, contact_radius;
+      const std::string  zone_entry;
     };
 
     SL_REGISTER_PLUGIN(Interface,

@@ -7,6 +7,8 @@
 
 #include <stabilized_lagrangian/obstacles/obstacle.h>
 
+#include <sstream>
+
 namespace StabilizedLagrangian
 {
   namespace Obstacles
@@ -44,10 +46,12 @@ namespace StabilizedLagrangian
     template <int dim> class Plane : public Interface<dim>
     {
     public:
-      Plane(const Point<dim> &point, const Tensor<1, dim> &normal)
+      /** @param section the obstacle's subsection, for messages */
+      Plane(const Point<dim> &point, const Tensor<1, dim> &normal, const std::string &section)
           : point(point)
           , normal(normal / normal.norm())
           , tangents(tangent_basis(this->normal))
+          , section(section)
       {
       }
 
@@ -67,7 +71,8 @@ namespace StabilizedLagrangian
       /** @brief The plane of the `Point` and `Normal` entries of @p section. */
       Plane(const ParameterHandler &prm, const std::string &section)
           : Plane(to_point<dim>(parse_vector(section + "/Point", prm.get("Point"), dim)),
-                  nonzero_normal(prm, section))
+                  nonzero_normal(prm, section),
+                  section)
       {
       }
 
@@ -85,6 +90,18 @@ namespace StabilizedLagrangian
       is_flat() const override
       {
         return true;
+      }
+
+      /** A plane normal to the axis; a tilted one revolves into a cone. */
+      std::string
+      axisymmetry_defect(const Tensor<1, dim> &axis) const override
+      {
+        if ((normal - (normal * axis) * axis).norm() <= 1e-10)
+          return "";
+        std::ostringstream why;
+        why << section << "/Normal points along (" << normal << "), not along the axis (" << axis
+            << "): the tilted plane's profile revolves into a cone, not a plane";
+        return why.str();
       }
 
       /** The body's box projected on the plane, enlarged by a fifth: a segment or a rectangle. */
@@ -125,6 +142,7 @@ namespace StabilizedLagrangian
       const Point<dim>                          point;
       const Tensor<1, dim>                      normal;
       const std::array<Tensor<1, dim>, dim - 1> tangents;
+      const std::string                         section;
     };
 
     /**
@@ -137,6 +155,7 @@ namespace StabilizedLagrangian
       Ball(const Point<dim> &center, const double radius, const std::string &section)
           : center(center)
           , radius(radius)
+          , section(section)
       {
         if (!(radius > 0.))
           throw InputError(section + "/Radius must be > 0.");
@@ -191,6 +210,19 @@ namespace StabilizedLagrangian
         return false;
       }
 
+      /** A ball centred on the axis; one off it revolves into a torus. */
+      std::string
+      axisymmetry_defect(const Tensor<1, dim> &axis) const override
+      {
+        const double off_axis = (center - (center * axis) * axis).norm();
+        if (off_axis <= 1e-10 * radius)
+          return "";
+        std::ostringstream why;
+        why << section << "/Center = " << center << " lies " << off_axis << " mm off the axis ("
+            << axis << "): the disc's profile revolves into a torus, not a ball";
+        return why.str();
+      }
+
       /** The whole circle (2D) or sphere (3D), refined until its facets look round. */
       void
       make_surface_mesh(Triangulation<dim - 1, dim> &surface,
@@ -201,8 +233,9 @@ namespace StabilizedLagrangian
       }
 
     private:
-      const Point<dim> center;
-      const double     radius;
+      const Point<dim>  center;
+      const double      radius;
+      const std::string section;
     };
 
     SL_REGISTER_PLUGIN(Interface, Plane, "plane", "rigid half-space bounded by a plane");

@@ -26,42 +26,13 @@ namespace StabilizedLagrangian
   SceneChecks<dim>::warn_before_run() const
   {
     check_body_is_held();
-    warn_if_body_behind_obstacle();
+    if (!warn_if_body_behind_obstacle())
+      warn_if_body_passes_through_obstacle();
     warn_if_pair_locks();
     warn_if_stick_traction_oscillates();
     warn_of_boundary_conditions();
     warn_if_obstacle_motion_ignored();
-  }
-
-  template <int dim>
-  void
-  SceneChecks<dim>::warn_if_obstacle_motion_ignored() const
-  {
-    const bool two_bodies = !view.master_boundaries.empty();
-    if (!two_bodies && !view.axisymmetric)
-      return;
-    // the motion sampled over the load path: its largest translation, and
-    // its largest radial one (x₁ is the radius in an axisymmetric model)
-    double translation = 0., radial = 0.;
-    for (unsigned int k = 0; k <= 20; ++k)
-      {
-        const auto motion = view.obstacle_motion.at(k / 20. * view.load_stepping.end_time);
-        translation       = std::max(translation, motion.translation.norm());
-        radial            = std::max(radial, std::abs(motion.translation[0]));
-      }
-    if (two_bodies && (translation > 0. || view.obstacle_motion.rotates()))
-      view.pcout << "WARNING: Obstacle/Motion moves the rigid obstacle, but this scene has two "
-                    "deformable bodies (Contact/Master boundary ids) and no obstacle: the motion "
-                    "is ignored. Move the second body by a Dirichlet condition on it (Boundary "
-                    "conditions/Dirichlet <name>).\n";
-    else if (!two_bodies && (radial > 0. || view.obstacle_motion.rotates()))
-      view.pcout << "WARNING: Obstacle/Motion "
-                 << (view.obstacle_motion.rotates() ? "turns the obstacle"
-                                                    : "moves the obstacle radially")
-                 << " in an axisymmetric model (Geometry/Axisymmetric), where the obstacle is a "
-                    "body of revolution about the axis x = 0: it may only move along the axis. "
-                    "The motion is applied to the obstacle's profile, which is no rigid motion of "
-                    "the body of revolution.\n";
+    warn_if_obstacle_not_of_revolution();
   }
 
   template <int dim>
@@ -326,33 +297,6 @@ namespace StabilizedLagrangian
             << "/Volumetric formulation = mixed (doc/near_incompressibility.md, \"Stick-zone "
                "traction\").\n";
       }
-  }
-
-  template <int dim>
-  void
-  SceneChecks<dim>::warn_if_body_behind_obstacle() const
-  {
-    if (!view.partner->is_rigid())
-      return;
-    // most of the body on the wrong side of the surface: the obstacle's normal
-    // points into the body (g_n = (x − x̄)·n < 0 means penetration)
-    const double tolerance = 1e-8 * GridTools::diameter(view.triangulation);
-    unsigned int behind = 0, vertices = 0;
-    for (const auto &cell : view.triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            ++vertices;
-            behind += view.partner->project(cell->vertex(v)).gap(cell->vertex(v)) < -tolerance;
-          }
-    behind   = Utilities::MPI::sum(behind, view.communicator);
-    vertices = Utilities::MPI::sum(vertices, view.communicator);
-    if (2 * behind > vertices)
-      view.pcout
-          << "WARNING: " << behind << " of " << vertices
-          << " cell vertices lie behind the obstacle's surface (negative gap) before the first "
-             "step. The obstacle's normal must point out of the obstacle, towards the body: "
-             "check the `Obstacle` entries (a plane's Normal, for instance).\n";
   }
 
   template <int dim>

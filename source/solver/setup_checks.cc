@@ -23,6 +23,8 @@ namespace StabilizedLagrangian
             chosen.master_boundaries,
             newton_constraints,
             *obstacle_motion,
+            *obstacle,
+            *geometry,
             partner.get(),
             *fe_pair,
             body_response.slots(),

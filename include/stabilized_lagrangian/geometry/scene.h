@@ -55,6 +55,30 @@ namespace StabilizedLagrangian
       }
 
       /**
+       * @brief A boundary the geometry makes of the curved faces near a
+       * point: the faces whose centre lies within @p radius of @p centre get
+       * @p id, the others @p outside_id; @p entry is the radius's entry
+       * (`Geometry/half ball/Contact zone radius`).
+       */
+      struct ContactZone
+      {
+        types::boundary_id id, outside_id;
+        Point<dim>         centre;
+        double             radius;
+        std::string        entry;
+      };
+
+      /**
+       * @brief The contact zones of the geometry (none: a block, a mesh
+       * file), for the messages about a zone that holds no face.
+       */
+      virtual std::vector<ContactZone>
+      contact_zones() const
+      {
+        return {};
+      }
+
+      /**
        * @brief Names of the bodies (a mesh file's physical groups of dimension
        * dim) with their material ids; the `Material 2`, `Material 3` slots may
        * use them.

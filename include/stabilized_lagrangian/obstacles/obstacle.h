@@ -7,6 +7,8 @@
 #include <stabilized_lagrangian/contact/pairing.h>
 #include <stabilized_lagrangian/plugins.h>
 
+#include <string>
+
 namespace StabilizedLagrangian
 {
   namespace Obstacles
@@ -35,6 +37,16 @@ namespace StabilizedLagrangian
        */
       virtual bool
       is_flat() const = 0;
+
+      /**
+       * @brief Empty when the obstacle is a body of revolution about the line
+       * through the origin along the unit vector @p axis (the axis x = 0 of
+       * an axisymmetric model, Geometry/Axisymmetric); otherwise why it is
+       * not, naming its entries at fault (a tilted plane's `Normal`, the
+       * `Center` of a ball off the axis).
+       */
+      virtual std::string
+      axisymmetry_defect(const Tensor<1, dim> &axis) const = 0;
 
       /**
        * @brief A mesh of the obstacle's surface for the output, at rest: the

@@ -12,7 +12,9 @@
 #include <stabilized_lagrangian/boundary_conditions/interface.h>
 #include <stabilized_lagrangian/contact/partner.h>
 #include <stabilized_lagrangian/discretization/fe_pair.h>
+#include <stabilized_lagrangian/geometry/scene.h>
 #include <stabilized_lagrangian/materials/material.h>
+#include <stabilized_lagrangian/obstacles/obstacle.h>
 #include <stabilized_lagrangian/parameters.h>
 #include <stabilized_lagrangian/solver/chosen_parameters.h>
 
@@ -24,7 +26,8 @@
 
 /**
  * @file
- * The checks of a scene before the run (source/solver/scene_checks.cc): the
+ * The checks of a scene before the run (source/solver/scene_checks.cc; those
+ * of the rigid obstacle in source/solver/obstacle_checks.cc): the
  * rigid motions its supports leave free, the warnings of a scene that will
  * not solve or not solve well, and the automatic augmentation parameters.
  */
@@ -64,6 +67,10 @@ namespace StabilizedLagrangian
       const AffineConstraints<double> &newton_constraints;
       /** `Obstacle/Motion`: the rigid obstacle's motion over time */
       const Contact::ObstacleMotion<dim> &obstacle_motion;
+      /** the rigid obstacle at rest (`Obstacle`; unused with two bodies) */
+      const Obstacles::Interface<dim> &obstacle;
+      /** the body's geometry: its boundary names and contact zones */
+      const Geometry::Interface<dim> &geometry;
       /** the contact partner; null before the first DoFs are set up */
       const Contact::Partner<dim>                     *partner;
       const Discretization::FEPair<dim>               &fe_pair;
@@ -82,9 +89,11 @@ namespace StabilizedLagrangian
 
     /**
      * @brief The warnings before the first step: a body even its contact
-     * cannot hold, a body behind the obstacle, volumetric locking, a
-     * stick-zone traction that oscillates, a Dirichlet condition not ramped,
-     * an obstacle motion the scene cannot follow.
+     * cannot hold, a body behind the obstacle, an obstacle reaching into the
+     * body outside Γc, volumetric locking, a stick-zone traction that
+     * oscillates, a Dirichlet condition not ramped, an obstacle motion the
+     * scene cannot follow, an obstacle that is no body of revolution in an
+     * axisymmetric model.
      */
     void
     warn_before_run() const;
@@ -166,9 +175,39 @@ namespace StabilizedLagrangian
      */
     void
     warn_if_stick_traction_oscillates() const;
-    /** Warn when most of the body starts behind the rigid obstacle's surface. */
-    void
+    /** Warn when most of the body starts behind the rigid obstacle's surface; true if it warned. */
+    bool
     warn_if_body_behind_obstacle() const;
+    /**
+     * Warn when the rigid obstacle reaches into the body's boundary outside
+     * Γc (`Contact/Contact boundary ids`), where nothing keeps it out: at
+     * the body's boundary vertices off Γc, before the first step, and at the
+     * end time with the obstacle where `Obstacle/Motion` takes it and the
+     * body undeformed (its deformation is not known before the run), there
+     * only on faces that face the obstacle and deeper than half its reach
+     * into Γc, which the contact pushes back.
+     */
+    void
+    warn_if_body_passes_through_obstacle() const;
+    /** The vertices of Γc on this rank's cells and ghosts (their indices in the triangulation). */
+    std::set<unsigned int>
+    contact_vertices() const;
+    /**
+     * The warning of warn_if_body_passes_through_obstacle(): the obstacle
+     * reaches into @p boundaries, each as @p reached says (a line each).
+     */
+    void
+    report_pass_through(const std::set<types::boundary_id> &boundaries,
+                        const std::string                  &reached) const;
+    /** "boundary 'name' (id 1)", or "boundary 1" when the geometry names no boundary @p id. */
+    std::string
+    boundary_label(types::boundary_id id) const;
+    /**
+     * Warn when the model is axisymmetric and the obstacle is no body of
+     * revolution about its axis (Obstacles::Interface::axisymmetry_defect()).
+     */
+    void
+    warn_if_obstacle_not_of_revolution() const;
 
     const View view;
   };
