@@ -34,7 +34,7 @@ executable, workdir = sys.argv[1], sys.argv[2]
 check = sltest.Checker()
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 sltest.seed_random("SL_DAMAGE_SEED", "damaged offsets")
-MAGIC = b"stabilized_lagrangian checkpoint 5"
+MAGIC = b"stabilized_lagrangian checkpoint 6"
 CRASH_SIGNS = ("Segmentation", "stack smashing", "core dumped", "terminate called", "Aborted",
                "double free", "corrupted", "std::bad_alloc")
 
@@ -89,6 +89,7 @@ def layout(data):
         pos += 8 + u64()
     fields["time"] = entries["time"]
     fields["step_size"] = entries["load stepping"] + 8  # LoadStepController::State: step, size
+    fields["hold"] = entries["load stepping"] + 24  # ... cuts, steps at the size, hold
     fields["last_normal_force"] = entries["last normal force"]
     fields["n_solution"] = entries["solution"]
     fields["n_segments"] = entries["contact faces"]
@@ -243,6 +244,7 @@ crafted = {
     "time -1": put(fields["time"], -1.0, "<d"),
     "step size 0": put(fields["step_size"], 0.0, "<d"),
     "step size -inf": put(fields["step_size"], float("-inf"), "<d"),
+    "step hold 0": put(fields["hold"], 0, "<I"),
     "last normal force inf": put(fields["last_normal_force"], float("inf"), "<d"),
     "bytes added before the end marker": seal(body[:-len(MAGIC) - 8] + b"\0" * 8 + body[-len(MAGIC) - 8:]),
     "bytes added after the end marker": seal(body + b"\0" * 8),

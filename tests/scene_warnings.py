@@ -23,10 +23,16 @@
 - An axisymmetric model (the axisymmetric Hertz ball) with an obstacle that is
   no body of revolution about the axis: a tilted plane must warn, naming
   `Obstacle/plane/Normal`, a ball off the axis `Obstacle/ball/Center`; a ball
-  on the axis must not warn."""
+  on the axis must not warn.
+- The size of a run, estimated before the mesh is refined (Geometry::SizeCheck): every run
+  prints it (`size estimate ...`, the cell count that of the refined block); the 3D patin with
+  `Global refinements = 12` is refused at once (exit non-zero, in seconds, naming
+  `Geometry/block/Global refinements` and the machine's memory); 10^7 load steps warn,
+  naming `Load stepping/Number of load steps`, before the first load step's line."""
 import os
 import re
 import sys
+import time
 import sltest
 
 executable, workdir = sys.argv[1], sys.argv[2]
@@ -130,4 +136,34 @@ for name, settings, entry in (
     check(code == 0 and (warned and entry in log if entry else not warned),
           f"{name}: exit code {code}, " + (f"warns, naming {entry.split(' ')[0]}" if entry else "no warning")
           + f" ({warned})")
+
+# --- the size of the run, before the mesh is refined --------------------------------------
+log = run("size_estimate", patin)
+estimate = re.search(r"size estimate .*: about ([0-9.e+]+) cells, ([0-9.e+]+) displacement DoFs", log)
+cells = re.search(r"stabilized_lagrangian: 2D, ([0-9]+) cells", log)
+check(estimate is not None and cells is not None and log.index("size estimate") < log.index("stabilized_lagrangian: 2D")
+      and abs(float(estimate.group(1)) - int(cells.group(1))) <= 0.05 * int(cells.group(1)),
+      f"a normal run prints the size estimate before its banner, the block's cells to 2 digits "
+      f"({estimate.group(0) if estimate else None}; {cells.group(1) if cells else None} cells)")
+
+patin_3d = sltest.read_prm(os.path.join(prm_directory, "patin_3d.prm"))
+check("set Global refinements = 3" in patin_3d, "prm/patin_3d.prm sets 'Global refinements = 3'")
+start = time.time()
+code, log = sltest.run(executable, patin_3d.replace("set Global refinements = 3", "set Global refinements = 12") +
+                       sltest.QUIET_OUTPUT, f"{workdir}/refinements_12", expect_success=False, timeout=120)
+seconds = time.time() - start
+check(code != 0 and "Geometry/block/Global refinements = 12" in log and "of memory of this machine" in log
+      and "step   1" not in log and seconds < 20,
+      f"3D patin with 12 refinements: refused in {seconds:.1f} s (exit {code}), naming the entry and the "
+      f"machine's memory: {log.strip().splitlines()[-1] if log.strip() else ''}")
+
+code, log = sltest.run(executable, patin + fast + sltest.nested_set("Load stepping/Number of load steps", 10**7) +
+                       sltest.nested_set("Load stepping/Wall time limit", 3) + sltest.QUIET_OUTPUT,
+                       f"{workdir}/ten_million_steps", expect_success=False, timeout=300)
+warned = re.search(r"^WARNING: .*Load stepping/Number of load steps = 10000000", log, re.MULTILINE)
+warning = warned.start() if warned else -1
+first_step = re.search(r"^step +1 ", log, re.MULTILINE)
+check(warning >= 0 and first_step is not None and warning < first_step.start(),
+      f"10^7 load steps: warning naming Load stepping/Number of load steps before step 1's line "
+      f"(warning at {warning}, step 1 at {first_step.start() if first_step else None})")
 check.finish()

@@ -235,7 +235,7 @@ namespace StabilizedLagrangian
                 face->set_all_manifold_ids(k + 1);
             triangulation.set_manifold(k + 1, SphericalManifold<dim>(spheres[k].second));
           }
-        triangulation.refine_global(refinements);
+        this->refine_global(triangulation, refinements);
       }
 
       std::map<std::string, types::boundary_id>

@@ -281,7 +281,7 @@ namespace StabilizedLagrangian
                 if (face->at_boundary() && renumber.count(face->boundary_id()))
                   face->set_boundary_id(renumber.at(face->boundary_id()));
           }
-        triangulation.refine_global(refinements);
+        this->refine_global(triangulation, refinements);
         if (simplex)
           split_into_simplices(triangulation);
         refine_near(triangulation, refinement_center, refinement_radius, local_refinements);
@@ -379,7 +379,7 @@ namespace StabilizedLagrangian
         Point<dim> center;
         center[dim - 1] = radius;
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
-        triangulation.refine_global(global_refinements);
+        this->refine_global(triangulation, global_refinements);
         if (simplex)
           split_into_simplices(triangulation);
         refine_near(triangulation, Point<dim>(), refinement_radius, local_refinements);
@@ -409,7 +409,7 @@ namespace StabilizedLagrangian
         center[dim - 1] = radius;
         turn_orthant_below(triangulation, center);
         triangulation.set_manifold(0, SphericalManifold<dim>(center));
-        triangulation.refine_global(global_refinements);
+        this->refine_global(triangulation, global_refinements);
         if (simplex)
           split_into_simplices(triangulation);
         refine_near(triangulation, Point<dim>(), refinement_radius, local_refinements);
@@ -514,7 +514,7 @@ namespace StabilizedLagrangian
         triangulation.copy_triangulation(both);
         triangulation.set_manifold(0, SphericalManifold<dim>(lower_center));
         triangulation.set_manifold(1, SphericalManifold<dim>(upper_center));
-        triangulation.refine_global(global_refinements);
+        this->refine_global(triangulation, global_refinements);
         Point<dim> contact_point;
         contact_point[dim - 1] = gap / 2.;
         for (unsigned int step = 0; step < local_refinements; ++step)

@@ -21,9 +21,10 @@ namespace StabilizedLagrangian
                         "5",
                         Patterns::Integer(0, 30),
                         "A load step that fails is halved and retried, down to the nominal step "
-                        "halved this many times; after a converged step the step doubles back "
-                        "towards the nominal one. A failure at the smallest step ends the run "
-                        "(exit code 2).");
+                        "halved this many times; a cut step doubles back towards the nominal one "
+                        "after a converged step, and once the step it grew to failed again "
+                        "after 2, 4, 8, ... converged steps in a row. A failure at the smallest "
+                        "step ends the run (exit code 2).");
       prm.declare_entry("Wall time limit",
                         "0",
                         Patterns::Double(0.),

@@ -45,7 +45,7 @@ namespace StabilizedLagrangian
 
   namespace
   {
-    constexpr char magic[] = "stabilized_lagrangian checkpoint 5";
+    constexpr char magic[] = "stabilized_lagrangian checkpoint 6";
     /** What every version's marker begins with: a file of another version is named as such. */
     constexpr char magic_family[] = "stabilized_lagrangian checkpoint";
 

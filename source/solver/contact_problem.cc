@@ -148,6 +148,14 @@ namespace StabilizedLagrangian
     fe_u                    = fe_pair->displacement_element();
     fe_m                    = fe_pair->multiplier_element(contact_zones.any_friction() ? dim : 1);
     multiplier_dofs_on_face = dofs_on_each_face(*fe_m);
+    geometry->set_size_check(std::make_shared<const Geometry::SizeCheck>(
+        Geometry::SizeCheck::Run{dim,
+                                 fe_pair->displacement_degree(),
+                                 Geometry::SizeCheck::refinement_entry(prm),
+                                 linear_solver_parameters,
+                                 load_stepping.n_steps,
+                                 mpi_communicator,
+                                 &pcout}));
     contact.choose_complementarity();
     pcout << LinearSolvers::set_threads(linear_solver_parameters.threads_per_rank) << "\n";
 

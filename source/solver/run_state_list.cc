@@ -159,9 +159,7 @@ namespace StabilizedLagrangian
                                  [](const double t) { return std::isfinite(t) && t >= 0.; });
     // the load stepping changes only when a step is accepted or cut
     state_list.add_value<LoadStepController::State>(
-        "load stepping", view.controller, Scope::checkpoint_only, [](const auto &c) {
-          return std::isfinite(c.step_size) && c.step_size > 0.;
-        });
+        "load stepping", view.controller, Scope::checkpoint_only, LoadStepController::valid);
     state_list.add_value<WorkCounters>("work", view.work, Scope::checkpoint_only, finite_work);
     state_list.add_value<WorkCounters>(
         "work before the load path", view.path_start_work, Scope::checkpoint_only, finite_work);

@@ -2,9 +2,11 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <stabilized_lagrangian/geometry/size_estimate.h>
 #include <stabilized_lagrangian/plugins.h>
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,39 @@ namespace StabilizedLagrangian
       {
         return {};
       }
+
+      /** @brief Estimate the run before the mesh's uniform refinement (refine_global()). */
+      void
+      set_size_check(std::shared_ptr<const SizeCheck> check)
+      {
+        size_check = std::move(check);
+      }
+
+    protected:
+      /**
+       * @brief Refine @p triangulation uniformly @p refinements times, once the
+       * size check has estimated the run on the refined mesh: it refuses
+       * what cannot fit before anything is allocated.
+       */
+      void
+      refine_global(Triangulation<dim> &triangulation, const unsigned int refinements) const
+      {
+        if (size_check)
+          {
+            // the block and the balls split each refined hypercube into simplices
+            // (GridGenerator::convert_hypercube_to_simplex_mesh)
+            const bool split =
+                simplex_cells() && triangulation.all_reference_cells_are_hyper_cube();
+            size_check->before_refinement(triangulation.n_active_cells(),
+                                          refinements,
+                                          split ? (dim == 2 ? 8 : 24) : 1,
+                                          simplex_cells());
+          }
+        triangulation.refine_global(refinements);
+      }
+
+    private:
+      std::shared_ptr<const SizeCheck> size_check;
     };
 
     /** @brief The registry of geometries for dimension @p dim. */
