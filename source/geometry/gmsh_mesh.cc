@@ -46,6 +46,23 @@ namespace StabilizedLagrangian
       /** The child's exit code for a geometry of dimension d: this + d. */
       constexpr int geometry_dimension_status = 10;
 
+      /** What is wrong with a geometry of dimension @p model_dim in a run of dimension @p dim. */
+      std::string
+      other_dimension(const int model_dim, const int dim)
+      {
+        const std::string entities = model_dim == 3   ? "volumes"
+                                     : model_dim == 2 ? "surfaces"
+                                                      : "curves";
+        return "its geometry is " +
+               (model_dim == 0
+                    ? std::string("empty (no point, curve, surface or volume)")
+                    : std::to_string(model_dim) + "D (its highest entities are " + entities + ")") +
+               ", and the run is " + std::to_string(dim) + "D (Dimension = " + std::to_string(dim) +
+               "). Set `Dimension = " + std::to_string(std::clamp(model_dim, 2, 3)) +
+               "` at the top of the parameter file, or give a " + std::to_string(dim) +
+               "D geometry.";
+      }
+
       void
       mesh_geo_file(const std::string &geo_file,
                     const std::string &msh_file,
@@ -108,21 +125,8 @@ namespace StabilizedLagrangian
         if (WIFEXITED(status) && WEXITSTATUS(status) >= geometry_dimension_status &&
             WEXITSTATUS(status) <= geometry_dimension_status + 3)
           {
-            const int model_dim = WEXITSTATUS(status) - geometry_dimension_status;
-            throw InputError(entry + ": its geometry is " +
-                             (model_dim == 0
-                                  ? std::string("empty (no point, curve, surface or "
-                                                "volume)")
-                                  : std::to_string(model_dim) + "D (its highest entities are " +
-                                        (model_dim == 3   ? "volumes"
-                                         : model_dim == 2 ? "surfaces"
-                                                          : "curves") +
-                                        ")") +
-                             ", and the run is " + std::to_string(dim) +
-                             "D (Dimension = " + std::to_string(dim) +
-                             "). Set `Dimension = " + std::to_string(std::clamp(model_dim, 2, 3)) +
-                             "` at the top of the parameter file, or give a " +
-                             std::to_string(dim) + "D geometry.");
+            throw InputError(entry + ": " +
+                             other_dimension(WEXITSTATUS(status) - geometry_dimension_status, dim));
           }
         if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))
           {
