@@ -9,7 +9,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <stabilized_lagrangian/geometry/mesh_building.h>
-#include <stabilized_lagrangian/parameters.h>
+#include <stabilized_lagrangian/plugins.h>
 
 #include <functional>
 
