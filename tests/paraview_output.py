@@ -106,8 +106,14 @@ def rendered(output, png, *arguments):
     if not pvpython or not shutil.which("xvfb-run"):
         check(False, "pvpython and xvfb-run are installed (packages python3-paraview, xvfb)")
         return False
-    result = subprocess.run(["xvfb-run", "-a", pvpython, render_tool, output, "--output", png, *arguments],
-                            capture_output=True, text=True, timeout=600)
+    # a virtual display that does not come up ("bad X server connection": one start in a few on
+    # a loaded machine) is no fault of the picture: the render is tried again on a new display
+    for attempt in range(3):
+        result = subprocess.run(["xvfb-run", "-a", pvpython, render_tool, output, "--output", png, *arguments],
+                                capture_output=True, text=True, timeout=600)
+        if result.returncode == 0 or "bad X server connection" not in result.stderr:
+            break
+        print(f"      (the virtual display did not come up; render attempt {attempt + 2})")
     check(result.returncode == 0 and os.path.exists(png),
           f"render_pvd.py {os.path.basename(output)} {' '.join(arguments)}: exit code {result.returncode}"
           + (f", {result.stderr.strip()[-400:]}" if result.returncode else ""))
